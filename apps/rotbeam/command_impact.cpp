@@ -1,0 +1,87 @@
+// `rotbeam impact`: the first impact of a pass — the Table 5-3 quantities (SPEC §7, §8).
+#include "commands.hpp"
+#include "common.hpp"
+
+#include "rotbeam/first_impact.hpp"
+
+#include <cmath>
+#include <iostream>
+
+namespace rotbeam::cli {
+
+namespace {
+
+struct ImpactOptions {
+  CaseOptions case_options;
+  bool json = false;
+};
+
+int run_impact(const ImpactOptions& o) {
+  const Config config = o.case_options.load();
+  const Model model = make_model(config.physical);
+  const FirstImpactResult r =
+      first_impact(model, config.impact, config.initial_conditions(), config.end_angle_rad(), config.free_step_s);
+  if (!r.found) {
+    print_error("no impact: the tip stays clear of the surface up to the end angle " +
+                fixed(config.end_angle_deg, 3) + " deg (closest gap " + std::to_string(r.min_gap) + " m)");
+    return kNoImpact;
+  }
+  const double theta_deg = r.theta * 180.0 / M_PI;
+  const ImpactResult& im = r.impact;
+  if (o.json) {
+    nlohmann::json j;
+    j["t_s"] = r.t;
+    j["theta_deg"] = theta_deg;
+    j["x_tip_m"] = r.x_tip;
+    j["y_tip_m"] = r.y_tip;
+    j["vx_before_m_s"] = im.vx_before;
+    j["vx_after_m_s"] = im.vx_after;
+    j["delta_vx_m_s"] = im.vx_before - im.vx_after;
+    j["restitution"] = -im.vx_after / im.vx_before;
+    j["vy_before_m_s"] = im.vy_before;
+    j["vy_after_m_s"] = im.vy_after;
+    j["impulse_n_s"] = im.impulse;
+    j["energy_loss_j"] = im.relative_energy_loss;
+    j["steps"] = r.steps;
+    j["rhs_evaluations"] = r.rhs_evaluations;
+    j["config"] = config.to_json();
+    std::cout << j.dump(2) << "\n";
+    return kSuccess;
+  }
+  std::string start = config.start;
+  if (config.start == "flexible") {
+    start = "flexible, q̇(0) = [";
+    for (std::size_t i = 0; i < config.modal_velocity.size(); ++i)
+      start += (i ? ", " : "") + fixed(config.modal_velocity[i], 3);
+    start += "] m/s";
+  }
+  std::cout << "First impact: " << fixed(config.physical.speed_rpm, 0) << " rpm, depth "
+            << fixed(100.0 * config.physical.depth_fraction, 2) << " %, " << config.physical.modes << " modes, "
+            << start << "\n"
+            << "  time             t       = " << fixed(r.t, 7) << " s\n"
+            << "  hub angle        θ       = " << fixed(theta_deg, 4) << " deg\n"
+            << "  tip position     Y_t     = " << fixed(r.y_tip, 6) << " m\n"
+            << "  normal velocity  V_X(−0) = " << fixed(im.vx_before, 4) << " m/s\n"
+            << "                   V_X(+0) = " << fixed(im.vx_after, 4) << " m/s\n"
+            << "  change           ΔV_X    = " << fixed(im.vx_before - im.vx_after, 4) << " m/s\n"
+            << "  restitution  −V_X(+0)/V_X(−0) = " << fixed(-im.vx_after / im.vx_before, 4) << "\n"
+            << "  impulse          P       = " << fixed(im.impulse * 1e6, 4) << " µN s\n\n"
+            << "Table 5-3 row:  rpm | V_X(−0) | V_X(+0) | ΔV_X | −V_X(+0)/V_X(−0)\n"
+            << "                " << fixed(config.physical.speed_rpm, 0) << " | " << fixed(im.vx_before, 4) << " | "
+            << fixed(im.vx_after, 4) << " | " << fixed(im.vx_before - im.vx_after, 4) << " | "
+            << fixed(-im.vx_after / im.vx_before, 4) << "\n";
+  return kSuccess;
+}
+
+}  // namespace
+
+Command add_impact_command(CLI::App& app) {
+  auto opts = std::make_shared<ImpactOptions>();
+  CLI::App* sub = app.add_subcommand("impact", "The first impact of a pass: the Table 5-3 quantities");
+  opts->case_options.add_to(*sub);
+  sub->add_flag("--json", opts->json,
+                "Print a JSON object (t_s, theta_deg, y_tip_m, vx_before_m_s, vx_after_m_s, delta_vx_m_s, restitution, …)");
+  return [opts] { return run_impact(*opts); };
+}
+
+}  // namespace rotbeam::cli

@@ -1,0 +1,133 @@
+// `rotbeam modes`: natural frequencies of the spinning filament versus hub speed (SPEC §3, §9).
+#include "commands.hpp"
+#include "common.hpp"
+
+#include "rotbeam/atomic_file.hpp"
+#include "rotbeam/modal_analysis.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <sstream>
+
+namespace rotbeam::cli {
+
+namespace {
+
+struct ModesOptions {
+  CaseOptions case_options;
+  std::string speeds;
+  bool json = false;
+  std::string csv_path;
+};
+
+// "A:B:N" (N evenly spaced speeds from A to B) or a single value "A".
+std::vector<double> parse_speeds(const std::string& text) {
+  const std::string what = "--speeds-rpm " + text + ": ";
+  std::vector<std::string> parts;
+  std::stringstream ss(text);
+  for (std::string part; std::getline(ss, part, ':');) parts.push_back(part);
+  auto number = [&](const std::string& s) {
+    std::size_t used = 0;
+    double v = 0;
+    try {
+      v = std::stod(s, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != s.size() || s.empty() || !std::isfinite(v)) throw ConfigError(what + "'" + s + "' is not a number");
+    if (v < 0) throw ConfigError(what + "speeds must be >= 0 rpm");
+    return v;
+  };
+  if (parts.size() == 1) return {number(parts[0])};
+  if (parts.size() != 3) throw ConfigError(what + "expected A:B:N (from A to B rpm in N points) or a single speed");
+  const double a = number(parts[0]), b = number(parts[1]);
+  std::size_t used = 0;
+  long count = 0;
+  try {
+    count = std::stol(parts[2], &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != parts[2].size() || count < 1 || count > 100000)
+    throw ConfigError(what + "N must be a whole number from 1 to 100000");
+  if (b < a) throw ConfigError(what + "B must not be below A");
+  std::vector<double> out;
+  for (long i = 0; i < count; ++i) out.push_back(count == 1 ? a : a + (b - a) * static_cast<double>(i) / (count - 1));
+  return out;
+}
+
+int run_modes(const ModesOptions& o) {
+  const Config config = o.case_options.load();
+  std::vector<double> speeds;
+  if (!o.speeds.empty()) {
+    speeds = parse_speeds(o.speeds);
+  } else {
+    speeds = {0.0, 550.0, 1000.0, 2000.0, 3000.0, config.physical.speed_rpm};
+    std::sort(speeds.begin(), speeds.end());
+    speeds.erase(std::unique(speeds.begin(), speeds.end()), speeds.end());
+  }
+  const Eigen::MatrixXd f = frequencies_versus_speed(config.physical, speeds);
+  const int n = config.physical.modes;
+
+  if (!o.csv_path.empty()) {
+    std::ostringstream csv;
+    csv.precision(12);
+    csv << "speed_rpm";
+    for (int k = 0; k < n; ++k) csv << ",f" << k + 1 << "_hz";
+    csv << "\n";
+    for (std::size_t s = 0; s < speeds.size(); ++s) {
+      csv << speeds[s];
+      for (int k = 0; k < n; ++k) csv << "," << f(static_cast<Eigen::Index>(s), k);
+      csv << "\n";
+    }
+    write_file_atomically(o.csv_path, csv.str());
+  }
+  if (o.json) {
+    nlohmann::json j;
+    j["speeds_rpm"] = speeds;
+    j["frequencies_hz"] = nlohmann::json::array();
+    for (std::size_t s = 0; s < speeds.size(); ++s) {
+      std::vector<double> row(n);
+      for (int k = 0; k < n; ++k) row[k] = f(static_cast<Eigen::Index>(s), k);
+      j["frequencies_hz"].push_back(row);
+    }
+    std::cout << j.dump(2) << "\n";
+    return kSuccess;
+  }
+  if (!o.csv_path.empty()) return kSuccess;
+  std::cout << "In-plane natural frequencies of the spinning filament, linearised about the straight beam\n"
+            << "(L = " << config.physical.length_m << " m, D = " << config.physical.diameter_m
+            << " m, r_h = " << config.physical.hub_radius_m << " m, " << n << " assumed modes)\n\n";
+  std::cout << "  speed_rpm";
+  for (int k = 0; k < n; ++k) {
+    std::string head = "f" + std::to_string(k + 1) + "_hz";
+    std::cout << std::string(std::max<int>(1, 12 - static_cast<int>(head.size())), ' ') << head;
+  }
+  std::cout << "\n";
+  for (std::size_t s = 0; s < speeds.size(); ++s) {
+    std::string sp = fixed(speeds[s], 1);
+    std::cout << std::string(std::max<int>(1, 11 - static_cast<int>(sp.size())), ' ') << sp;
+    for (int k = 0; k < n; ++k) {
+      const std::string v = fixed(f(static_cast<Eigen::Index>(s), k), 3);
+      std::cout << std::string(std::max<int>(1, 12 - static_cast<int>(v.size())), ' ') << v;
+    }
+    std::cout << "\n";
+  }
+  return kSuccess;
+}
+
+}  // namespace
+
+Command add_modes_command(CLI::App& app) {
+  auto opts = std::make_shared<ModesOptions>();
+  CLI::App* sub = app.add_subcommand("modes", "Natural frequencies of the spinning filament versus hub speed");
+  opts->case_options.add_to(*sub);
+  sub->add_option("--speeds-rpm", opts->speeds,
+                  "Speeds A:B:N (N points from A to B rpm) or one speed; default: 0, the Table 5-2 speeds and the case's speed");
+  sub->add_flag("--json", opts->json, "Print {\"speeds_rpm\": [...], \"frequencies_hz\": [[...], ...]}");
+  sub->add_option("--csv", opts->csv_path, "Also write the table to this CSV file");
+  return [opts] { return run_modes(*opts); };
+}
+
+}  // namespace rotbeam::cli

@@ -1,0 +1,14 @@
+// Subcommand registration: each adds itself to the app and returns the code to run when chosen.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace rotbeam::cli {
+
+using Command = std::function<int()>;
+
+Command add_modes_command(CLI::App& app);
+Command add_impact_command(CLI::App& app);
+
+}  // namespace rotbeam::cli

@@ -1,0 +1,45 @@
+// rotbeam: simulator of a flexible filament on a spinning hub striking a flat rigid surface.
+#include "commands.hpp"
+#include "common.hpp"
+
+#include <exception>
+#include <iostream>
+#include <map>
+
+int main(int argc, char** argv) {
+  using namespace rotbeam::cli;
+  CLI::App app{"rotbeam: a flexible filament on a spinning hub whose tip strikes and rubs a flat rigid surface\n"
+               "(assumed modes, momentum-balance impacts, Lagrange-multiplier contact with Coulomb friction)"};
+  app.name("rotbeam");
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "rotbeam 0.1.0");
+  std::map<CLI::App*, Command> commands;
+  Command modes = add_modes_command(app);
+  Command impact = add_impact_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    print_error(e.what());
+    return kBadInput;
+  }
+  try {
+    if (app.got_subcommand("modes")) return modes();
+    if (app.got_subcommand("impact")) return impact();
+  } catch (const rotbeam::ConfigError& e) {
+    print_error(e.what());
+    return kBadInput;
+  } catch (const std::invalid_argument& e) {
+    print_error(e.what());
+    return kBadInput;
+  } catch (const std::exception& e) {
+    print_error(e.what());
+    return kRuntimeFailure;
+  }
+  return kBadInput;
+}

@@ -1,0 +1,45 @@
+// Impact by momentum balance (SPEC §5, thesis eqn 4-106):
+//   q̇⁺ = q̇⁻ + P M⁻¹∇C,  P = −(1 + e) Ċ⁻ / a,  a = ∇CᵀM⁻¹∇C,  so that Ċ⁺ = −e Ċ⁻.
+// Position and time are unchanged; friction during the impact is neglected.
+// P is the impulse on the tip along X [N s] (negative: the surface pushes the tip back).
+#pragma once
+
+#include "rotbeam/dynamics.hpp"
+#include "rotbeam/kinematics.hpp"
+
+namespace rotbeam {
+
+enum class RestitutionModel { yigit, constant };
+enum class RestitutionSpeed { normal, full };
+
+/// How e is chosen at an impact.
+struct ImpactLaw {
+  RestitutionModel model = RestitutionModel::yigit;
+  double constant = 0.5;          // e when model == constant, in [0, 1]
+  double cap = 1.0;               // upper bound on e (Yigit's law exceeds 1 below 0.0634 m/s)
+  double plastic_below_m_s = 0.0; // normal speeds below this give e = 0 (ends Zeno sequences)
+  RestitutionSpeed speed = RestitutionSpeed::normal;  // `full`: Appendix B jump.m (|V_tip|)
+};
+
+/// e for an impact with normal approach speed v_n = |Ċ⁻| and full tip speed |V| [m/s]:
+/// Yigit et al. e = 0.501 v^(−1/4) with v = v_n (or |V| under RestitutionSpeed::full), capped;
+/// 0 when v_n < plastic_below_m_s.
+double restitution(const ImpactLaw& law, double normal_speed, double full_speed);
+
+struct ImpactResult {
+  double vx_before = 0, vx_after = 0;  // V_X = Ċ before and after [m/s]
+  double vy_before = 0, vy_after = 0;  // V_Y [m/s]
+  double restitution = 0;              // e used
+  double impulse = 0;                  // P [N s]
+  double effective_inverse_mass = 0;   // a = ∇CᵀM⁻¹∇C [1/kg]
+  double relative_energy_loss = 0;     // ½(1 − e²)(Ċ⁻)²/a [J], the drop of T_rel
+  double delta_t2 = 0;                 // change of ½q̇ᵀMq̇ [J] = −loss − P ∂C/∂t
+};
+
+/// Applies the impact law at (t, q) to qd in place. Requires an approaching tip (Ċ⁻ > 0);
+/// throws std::domain_error otherwise (a receding tip has no impact, SPEC §5).
+ImpactResult apply_impact(const Model& model, const ImpactLaw& law, double t,
+                          const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Ref<Eigen::VectorXd> qd,
+                          Workspace& ws, TipKinematics& tip);
+
+}  // namespace rotbeam

@@ -1,0 +1,25 @@
+// Linearised modal analysis about the straight beam (q = 0) at a given hub speed (SPEC §3):
+//   m q̈ + (K_ω(0) + K_b(0)) q = 0  (G(0) = 0 and D = 0, so the in-plane modes decouple).
+// Frequencies Ω_k/2π of the lead-lag modes of the spinning cantilever; the mode shapes are the
+// eigenvectors in modal coordinates (normalised to unit length), w_k(ξ) = S(ξ)ᵀ φ_k.
+#pragma once
+
+#include "rotbeam/model.hpp"
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace rotbeam {
+
+struct ModalAnalysis {
+  Eigen::VectorXd frequencies_hz;  // ascending, n values (negative stiffness → NaN)
+  Eigen::MatrixXd shapes;          // column k = modal coordinates of mode k
+};
+
+/// Modes of `model` (its own ω).
+ModalAnalysis modal_analysis(const Model& model);
+
+/// Modes at each speed [rpm] for the beam of `base` (rows: speeds, columns: modes) [Hz].
+Eigen::MatrixXd frequencies_versus_speed(const PhysicalParameters& base, const std::vector<double>& speeds_rpm);
+
+}  // namespace rotbeam

@@ -1,0 +1,354 @@
+#include "rotbeam/config.hpp"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <sstream>
+
+namespace rotbeam {
+
+namespace {
+
+std::string format_number(double v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  return s.str();
+}
+
+// A short, single-line rendering of a TOML node for error messages.
+std::string render(const toml::node& node) {
+  std::ostringstream s;
+  if (node.is_string())
+    s << '"' << *node.value<std::string>() << '"';
+  else if (node.is_array() || node.is_table())
+    s << toml::toml_formatter{node, toml::format_flags::none};
+  else
+    node.visit([&](auto&& v) { s << v; });
+  std::string out = s.str();
+  std::replace(out.begin(), out.end(), '\n', ' ');
+  return out;
+}
+
+[[noreturn]] void fail(const std::string& key, const toml::node& node, const std::string& why) {
+  throw ConfigError(key + " = " + render(node) + ": " + why);
+}
+
+double as_number(const std::string& key, const toml::node& node) {
+  if (!node.is_number()) fail(key, node, "must be a number");
+  const double v = *node.value<double>();
+  if (!std::isfinite(v)) fail(key, node, "must be finite");
+  return v;
+}
+
+double number_in(const std::string& key, const toml::node& node, double lo, double hi, bool lo_open, bool hi_open) {
+  const double v = as_number(key, node);
+  const bool ok_lo = lo_open ? v > lo : v >= lo;
+  const bool ok_hi = hi_open ? v < hi : v <= hi;
+  if (!ok_lo || !ok_hi) {
+    std::string range = std::string(lo_open ? "(" : "[") + format_number(lo) + ", " +
+                        (std::isinf(hi) ? std::string("inf") : format_number(hi)) + (hi_open ? ")" : "]");
+    fail(key, node, "must be in " + range);
+  }
+  return v;
+}
+
+double positive(const std::string& key, const toml::node& node) {
+  return number_in(key, node, 0.0, INFINITY, true, true);
+}
+
+std::string one_of(const std::string& key, const toml::node& node, std::initializer_list<const char*> choices) {
+  std::string list;
+  for (const char* c : choices) list += (list.empty() ? "\"" : ", \"") + std::string(c) + "\"";
+  if (!node.is_string()) fail(key, node, "must be one of " + list);
+  const std::string v = *node.value<std::string>();
+  for (const char* c : choices)
+    if (v == c) return v;
+  fail(key, node, "must be one of " + list);
+}
+
+bool boolean(const std::string& key, const toml::node& node) {
+  if (!node.is_boolean()) fail(key, node, "must be true or false");
+  return *node.value<bool>();
+}
+
+std::vector<double> number_array(const std::string& key, const toml::node& node) {
+  const toml::array* arr = node.as_array();
+  if (!arr) fail(key, node, "must be an array of numbers");
+  std::vector<double> out;
+  for (const toml::node& el : *arr) {
+    if (!el.is_number()) fail(key, node, "must be an array of numbers");
+    const double v = *el.value<double>();
+    if (!std::isfinite(v)) fail(key, node, "must hold finite numbers");
+    out.push_back(v);
+  }
+  return out;
+}
+
+struct Parsed {
+  Config config;
+  bool start_given = false;
+  const toml::node* velocity_node = nullptr;
+  const toml::node* displacement_node = nullptr;
+  const toml::node* modes_node = nullptr;
+  const toml::node* depth_node = nullptr;
+  const toml::node* end_angle_node = nullptr;
+};
+
+using Setter = std::function<void(Parsed&, const std::string&, const toml::node&)>;
+
+const std::vector<std::pair<std::string, Setter>>& schema() {
+  static const std::vector<std::pair<std::string, Setter>> keys = {
+      {"beam.length_m", [](Parsed& p, auto& k, auto& n) { p.config.physical.length_m = positive(k, n); }},
+      {"beam.diameter_m", [](Parsed& p, auto& k, auto& n) { p.config.physical.diameter_m = positive(k, n); }},
+      {"beam.density_kg_m3", [](Parsed& p, auto& k, auto& n) { p.config.physical.density_kg_m3 = positive(k, n); }},
+      {"beam.youngs_modulus_pa", [](Parsed& p, auto& k, auto& n) { p.config.physical.youngs_modulus_pa = positive(k, n); }},
+      {"beam.modes",
+       [](Parsed& p, auto& k, auto& n) {
+         if (!n.is_integer()) fail(k, n, "must be an integer");
+         const int64_t v = *n.template value<int64_t>();
+         if (v < 1 || v > kMaxModes) fail(k, n, "must be in 1.." + std::to_string(kMaxModes));
+         p.config.physical.modes = static_cast<int>(v);
+         p.modes_node = &n;
+       }},
+      {"hub.radius_m", [](Parsed& p, auto& k, auto& n) { p.config.physical.hub_radius_m = number_in(k, n, 0.0, INFINITY, false, true); }},
+      {"hub.speed_rpm", [](Parsed& p, auto& k, auto& n) { p.config.physical.speed_rpm = positive(k, n); }},
+      {"surface.depth_fraction",
+       [](Parsed& p, auto& k, auto& n) {
+         p.config.physical.depth_fraction = number_in(k, n, 0.0, 1.0, true, true);
+         p.depth_node = &n;
+       }},
+      {"surface.friction", [](Parsed& p, auto& k, auto& n) { p.config.physical.friction = number_in(k, n, 0.0, INFINITY, false, true); }},
+      {"impact.restitution",
+       [](Parsed& p, auto& k, auto& n) {
+         if (n.is_string()) {
+           one_of(k, n, {"yigit"});
+           p.config.impact.model = RestitutionModel::yigit;
+         } else if (n.is_number()) {
+           p.config.impact.model = RestitutionModel::constant;
+           p.config.impact.constant = number_in(k, n, 0.0, 1.0, false, false);
+         } else {
+           fail(k, n, "must be \"yigit\" or a number in [0, 1]");
+         }
+       }},
+      {"impact.restitution_cap", [](Parsed& p, auto& k, auto& n) { p.config.impact.cap = number_in(k, n, 0.0, 1.0, false, false); }},
+      {"impact.plastic_below_m_s", [](Parsed& p, auto& k, auto& n) { p.config.impact.plastic_below_m_s = number_in(k, n, 0.0, INFINITY, false, true); }},
+      {"initial.start",
+       [](Parsed& p, auto& k, auto& n) {
+         p.config.start = one_of(k, n, {"rigid", "flexible"});
+         p.start_given = true;
+       }},
+      {"initial.modal_velocity",
+       [](Parsed& p, auto& k, auto& n) {
+         p.config.modal_velocity = number_array(k, n);
+         p.velocity_node = &n;
+       }},
+      {"initial.modal_displacement",
+       [](Parsed& p, auto& k, auto& n) {
+         p.config.modal_displacement = number_array(k, n);
+         p.displacement_node = &n;
+       }},
+      {"simulation.scheme", [](Parsed& p, auto& k, auto& n) { p.config.scheme = one_of(k, n, {"adaptive", "thesis"}); }},
+      {"simulation.end_angle_deg",
+       [](Parsed& p, auto& k, auto& n) {
+         p.config.end_angle_deg = number_in(k, n, -90.0, 270.0, true, false);
+         p.end_angle_node = &n;
+       }},
+      {"simulation.rtol", [](Parsed& p, auto& k, auto& n) { p.config.rtol = number_in(k, n, 0.0, 1.0, true, true); }},
+      {"simulation.atol", [](Parsed& p, auto& k, auto& n) { p.config.atol = positive(k, n); }},
+      {"simulation.free_step_s", [](Parsed& p, auto& k, auto& n) { p.config.free_step_s = number_in(k, n, 0.0, 1e-3, true, false); }},
+      {"compat.thesis_forces", [](Parsed& p, auto& k, auto& n) { p.config.thesis_forces = boolean(k, n); }},
+      {"compat.restitution_speed",
+       [](Parsed& p, auto& k, auto& n) {
+         p.config.impact.speed = one_of(k, n, {"normal", "full"}) == "full" ? RestitutionSpeed::full : RestitutionSpeed::normal;
+       }},
+  };
+  return keys;
+}
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j)
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+
+std::string suggestion(const std::string& key) {
+  std::string best;
+  std::size_t best_d = 4;
+  for (const auto& [k, setter] : schema()) {
+    const std::size_t d = edit_distance(key, k);
+    if (d < best_d) best_d = d, best = k;
+  }
+  return best.empty() ? std::string() : " (did you mean " + best + "?)";
+}
+
+void apply_override(toml::table& root, const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw ConfigError("--set " + assignment + ": expected section.key=value");
+  const std::string key = assignment.substr(0, eq);
+  const std::string text = assignment.substr(eq + 1);
+  const auto dot = key.find('.');
+  if (dot == std::string::npos || dot == 0 || dot + 1 == key.size() || key.find('.', dot + 1) != std::string::npos)
+    throw ConfigError("--set " + assignment + ": the key must be section.key");
+  const std::string section = key.substr(0, dot), name = key.substr(dot + 1);
+  if (std::none_of(schema().begin(), schema().end(), [&](const auto& s) { return s.first == key; }))
+    throw ConfigError("--set " + key + ": unknown key" + suggestion(key));
+  toml::table value_table;
+  bool parsed_ok = false;
+  if (!text.empty()) {
+    try {
+      value_table = toml::parse("value = " + text);
+      parsed_ok = value_table.contains("value");
+    } catch (const toml::parse_error&) {
+      parsed_ok = false;
+    }
+  }
+  if (!root.contains(section)) root.insert(section, toml::table{});
+  toml::table* sec = root[section].as_table();
+  if (!sec) throw ConfigError(section + ": must be a table");
+  if (parsed_ok)
+    value_table["value"].node()->visit([&](auto&& v) { sec->insert_or_assign(name, v); });
+  else
+    sec->insert_or_assign(name, text);  // a bare word is a string
+}
+
+Config resolve(toml::table& root, const std::vector<std::string>& overrides) {
+  for (const std::string& o : overrides) apply_override(root, o);
+  Parsed p;
+  std::map<std::string, const Setter*> by_key;
+  for (const auto& [k, s] : schema()) by_key[k] = &s;
+  // Walk the table in schema order so dependent checks see their inputs; reject unknown names first.
+  for (auto&& [section_key, section_node] : root) {
+    const std::string section(section_key.str());
+    const toml::table* sec = section_node.as_table();
+    if (!sec) fail(section, section_node, "unknown top-level key; expected a [section]" + suggestion(section));
+    for (auto&& [name_key, value] : *sec) {
+      const std::string key = section + "." + std::string(name_key.str());
+      if (!by_key.count(key)) fail(key, value, "unknown key" + suggestion(key));
+    }
+  }
+  for (const auto& [k, setter] : schema()) {
+    const auto dot = k.find('.');
+    const toml::node* node = root.at_path(k).node();
+    (void)dot;
+    if (node) setter(p, k, *node);
+  }
+  Config& c = p.config;
+  const int n = c.physical.modes;
+  auto check_length = [&](std::vector<double>& v, const toml::node* node, const char* key) {
+    if (!node) {
+      v.assign(n, 0.0);
+      return;
+    }
+    if (static_cast<int>(v.size()) != n)
+      fail(key, *node, "must have beam.modes = " + std::to_string(n) + " values, got " + std::to_string(v.size()));
+  };
+  check_length(c.modal_velocity, p.velocity_node, "initial.modal_velocity");
+  check_length(c.modal_displacement, p.displacement_node, "initial.modal_displacement");
+  const bool disturbed = std::any_of(c.modal_velocity.begin(), c.modal_velocity.end(), [](double v) { return v != 0.0; }) ||
+                         std::any_of(c.modal_displacement.begin(), c.modal_displacement.end(), [](double v) { return v != 0.0; });
+  if (disturbed) {
+    if (p.start_given && c.start == "rigid")
+      throw ConfigError("initial.start = \"rigid\" contradicts a non-zero initial.modal_velocity or "
+                        "initial.modal_displacement (a rigid start has q = q̇ = 0)");
+    c.start = "flexible";
+  }
+  // The surface must be reachable before the end angle for a rigid start.
+  if (c.start == "rigid") {
+    const Model probe = make_model(c.physical);
+    const double theta_star = probe.rigid_contact_angle() * 180.0 / M_PI;
+    if (theta_star >= c.end_angle_deg) {
+      const toml::node* node = p.end_angle_node ? p.end_angle_node : p.depth_node;
+      const std::string what = "the rigid tip reaches the surface only at " + format_number(theta_star) +
+                               " deg, after the end angle " + format_number(c.end_angle_deg) + " deg";
+      if (node) fail(p.end_angle_node ? "simulation.end_angle_deg" : "surface.depth_fraction", *node, what);
+      throw ConfigError(what);
+    }
+  }
+  return c;
+}
+
+}  // namespace
+
+InitialConditions Config::initial_conditions() const {
+  InitialConditions ic;
+  ic.rigid_start = start == "rigid";
+  const int n = physical.modes;
+  ic.q0 = Eigen::VectorXd::Zero(n);
+  ic.qd0 = Eigen::VectorXd::Zero(n);
+  for (int i = 0; i < n && i < static_cast<int>(modal_displacement.size()); ++i) ic.q0[i] = modal_displacement[i];
+  for (int i = 0; i < n && i < static_cast<int>(modal_velocity.size()); ++i) ic.qd0[i] = modal_velocity[i];
+  return ic;
+}
+
+double Config::end_angle_rad() const { return end_angle_deg * M_PI / 180.0; }
+
+nlohmann::json Config::to_json() const {
+  nlohmann::json j;
+  j["beam"] = {{"length_m", physical.length_m},
+               {"diameter_m", physical.diameter_m},
+               {"density_kg_m3", physical.density_kg_m3},
+               {"youngs_modulus_pa", physical.youngs_modulus_pa},
+               {"modes", physical.modes}};
+  j["hub"] = {{"radius_m", physical.hub_radius_m}, {"speed_rpm", physical.speed_rpm}};
+  j["surface"] = {{"depth_fraction", physical.depth_fraction}, {"friction", physical.friction}};
+  j["impact"] = {{"restitution_cap", impact.cap}, {"plastic_below_m_s", impact.plastic_below_m_s}};
+  if (impact.model == RestitutionModel::yigit)
+    j["impact"]["restitution"] = "yigit";
+  else
+    j["impact"]["restitution"] = impact.constant;
+  j["initial"] = {{"start", start}, {"modal_velocity", modal_velocity}, {"modal_displacement", modal_displacement}};
+  j["simulation"] = {{"scheme", scheme}, {"end_angle_deg", end_angle_deg}, {"rtol", rtol}, {"atol", atol},
+                     {"free_step_s", free_step_s}};
+  j["compat"] = {{"thesis_forces", thesis_forces},
+                 {"restitution_speed", impact.speed == RestitutionSpeed::full ? "full" : "normal"}};
+  return j;
+}
+
+Config load_config_string(const std::string& toml_text, const std::vector<std::string>& overrides) {
+  toml::table root;
+  try {
+    root = toml::parse(toml_text);
+  } catch (const toml::parse_error& e) {
+    throw ConfigError("TOML syntax error at line " + std::to_string(e.source().begin.line) + ", column " +
+                      std::to_string(e.source().begin.column) + ": " + std::string(e.description()));
+  }
+  return resolve(root, overrides);
+}
+
+Config load_config(const std::optional<std::string>& path, const std::vector<std::string>& overrides) {
+  toml::table root;
+  if (path) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(*path, ec)) throw ConfigError(*path + ": no such configuration file");
+    try {
+      root = toml::parse_file(*path);
+    } catch (const toml::parse_error& e) {
+      throw ConfigError(*path + ":" + std::to_string(e.source().begin.line) + ":" +
+                        std::to_string(e.source().begin.column) + ": TOML syntax error: " + std::string(e.description()));
+    }
+  }
+  return resolve(root, overrides);
+}
+
+const std::vector<std::string>& config_keys() {
+  static const std::vector<std::string> keys = [] {
+    std::vector<std::string> k;
+    for (const auto& [name, setter] : schema()) k.push_back(name);
+    return k;
+  }();
+  return keys;
+}
+
+}  // namespace rotbeam

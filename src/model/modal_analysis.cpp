@@ -1,0 +1,34 @@
+#include "rotbeam/modal_analysis.hpp"
+
+#include "rotbeam/dynamics.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <limits>
+
+namespace rotbeam {
+
+ModalAnalysis modal_analysis(const Model& model) {
+  const Eigen::MatrixXd k = linear_stiffness(model) / model.mass;
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(k);
+  ModalAnalysis out;
+  out.frequencies_hz.resize(model.n);
+  for (int i = 0; i < model.n; ++i) {
+    const double lambda = solver.eigenvalues()[i];
+    out.frequencies_hz[i] = lambda >= 0.0 ? std::sqrt(lambda) / (2.0 * M_PI) : std::numeric_limits<double>::quiet_NaN();
+  }
+  out.shapes = solver.eigenvectors();
+  return out;
+}
+
+Eigen::MatrixXd frequencies_versus_speed(const PhysicalParameters& base, const std::vector<double>& speeds_rpm) {
+  Eigen::MatrixXd f(static_cast<Eigen::Index>(speeds_rpm.size()), base.modes);
+  PhysicalParameters p = base;
+  for (std::size_t s = 0; s < speeds_rpm.size(); ++s) {
+    p.speed_rpm = speeds_rpm[s];
+    f.row(static_cast<Eigen::Index>(s)) = modal_analysis(make_model(p)).frequencies_hz.transpose();
+  }
+  return f;
+}
+
+}  // namespace rotbeam
