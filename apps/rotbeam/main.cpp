@@ -5,6 +5,7 @@
 #include <exception>
 #include <iostream>
 #include <map>
+#include <string>
 
 int main(int argc, char** argv) {
   using namespace rotbeam::cli;
@@ -13,9 +14,12 @@ int main(int argc, char** argv) {
   app.name("rotbeam");
   app.require_subcommand(1);
   app.set_version_flag("--version", "rotbeam 0.1.0");
-  std::map<CLI::App*, Command> commands;
   Command modes = add_modes_command(app);
   Command impact = add_impact_command(app);
+  if (argc > 1 && argv[1][0] != '-' && std::string(argv[1]) != "modes" && std::string(argv[1]) != "impact") {
+    print_error("unknown command '" + std::string(argv[1]) + "' (commands: modes, impact; see rotbeam --help)");
+    return kBadInput;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -189,6 +189,9 @@ std::string suggestion(const std::string& key) {
     const std::size_t d = edit_distance(key, k);
     if (d < best_d) best_d = d, best = k;
   }
+  if (best.empty())  // a truncated name: "hub.speed" for "hub.speed_rpm"
+    for (const auto& [k, setter] : schema())
+      if (key.size() >= 3 && k.rfind(key, 0) == 0) return " (did you mean " + k + "?)";
   return best.empty() ? std::string() : " (did you mean " + best + "?)";
 }
 

@@ -1,0 +1,119 @@
+#include "reference_beam.hpp"
+
+#include <boost/math/quadrature/gauss.hpp>
+#include <cmath>
+#include <random>
+
+namespace rotbeam::testing {
+
+namespace {
+using Gauss30 = boost::math::quadrature::gauss<double, 30>;
+
+// Composite 30-point Gauss–Legendre nodes/weights on [a, b] with `panels` panels.
+void gauss_nodes(double a, double b, int panels, std::vector<double>& x, std::vector<double>& w) {
+  x.clear();
+  w.clear();
+  const auto& absc = Gauss30::abscissa();
+  const auto& wts = Gauss30::weights();
+  const double width = (b - a) / panels;
+  for (int p = 0; p < panels; ++p) {
+    const double mid = a + (p + 0.5) * width, half = 0.5 * width;
+    for (std::size_t k = 0; k < absc.size(); ++k) {
+      const double sgns[2] = {1.0, -1.0};
+      for (double sg : sgns) {
+        if (sg < 0 && absc[k] == 0.0) continue;
+        x.push_back(mid + sg * half * absc[k]);
+        w.push_back(half * wts[k]);
+      }
+    }
+  }
+}
+}  // namespace
+
+ReferenceBeam::ReferenceBeam(const Model& model, int panels) : model_(model) {
+  const int n = model.n;
+  const ModalBasis& basis = model.integrals->basis;
+  gauss_nodes(0.0, 1.0, panels, xi_, w_);
+  std::vector<double> xin, win;
+  Eigen::VectorXd s(n), ds(n), d2s(n);
+  for (double xi : xi_) {
+    basis.evaluate(xi, s.data(), ds.data(), d2s.data());
+    s_.push_back(s);
+    d2s_.push_back(d2s);
+    p_.push_back(d2s * ds.transpose() + ds * d2s.transpose());
+    Eigen::MatrixXd isp = Eigen::MatrixXd::Zero(n, n);
+    gauss_nodes(0.0, xi, std::max(1, static_cast<int>(std::ceil(xi * panels))), xin, win);
+    for (std::size_t k = 0; k < xin.size(); ++k) {
+      basis.evaluate(xin[k], nullptr, ds.data(), nullptr);
+      isp += win[k] * ds * ds.transpose();
+    }
+    isp_.push_back(isp);
+  }
+}
+
+double ReferenceBeam::t0(const Eigen::VectorXd& q) const {
+  const double L = model_.length;
+  double sum = 0.0;
+  for (std::size_t g = 0; g < xi_.size(); ++g) {
+    const double x = model_.hub_radius + xi_[g] * L - q.dot(isp_[g] * q) / (2.0 * L);
+    const double y = s_[g].dot(q);
+    sum += w_[g] * (x * x + y * y);
+  }
+  return 0.5 * model_.omega * model_.omega * model_.mass * sum;
+}
+
+double ReferenceBeam::t1(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const {
+  const double L = model_.length;
+  double sum = 0.0;
+  for (std::size_t g = 0; g < xi_.size(); ++g) {
+    const double x = model_.hub_radius + xi_[g] * L - q.dot(isp_[g] * q) / (2.0 * L);
+    const double y = s_[g].dot(q);
+    const double xd = -q.dot(isp_[g] * v) / L, yd = s_[g].dot(v);
+    sum += w_[g] * (x * yd - y * xd);
+  }
+  return model_.omega * model_.mass * sum;
+}
+
+double ReferenceBeam::t2(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const {
+  const double L = model_.length;
+  double sum = 0.0;
+  for (std::size_t g = 0; g < xi_.size(); ++g) {
+    const double xd = -q.dot(isp_[g] * v) / L, yd = s_[g].dot(v);
+    sum += w_[g] * (xd * xd + yd * yd);
+  }
+  return 0.5 * model_.mass * sum;
+}
+
+double ReferenceBeam::potential(const Eigen::VectorXd& q) const {
+  const double L = model_.length;
+  double sum = 0.0;
+  for (std::size_t g = 0; g < xi_.size(); ++g) {
+    const double x2 = -q.dot(p_[g] * q) / (2.0 * L);  // x'' = −qᵀ P q/(2L)
+    const double y2 = d2s_[g].dot(q);
+    sum += w_[g] * (x2 * x2 + y2 * y2);
+  }
+  return 0.5 * model_.bending_stiffness / (L * L * L) * sum;
+}
+
+double ReferenceBeam::angular_momentum(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const {
+  const double w = model_.omega;
+  return (2.0 * t0(q) / (w * w)) * w + t1(q, v) / w;
+}
+
+void random_state(const Model& model, unsigned seed, double tip_deflection_m, double speed, Eigen::VectorXd& q,
+                  Eigen::VectorXd& v) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const int n = model.n;
+  q.resize(n);
+  v.resize(n);
+  for (int i = 0; i < n; ++i) {
+    const double decay = 1.0 / ((i + 1.0) * (i + 1.0));
+    q[i] = u(rng) * decay;
+    v[i] = speed * u(rng) / (i + 1.0);
+  }
+  const double tip = std::abs(model.integrals->s_tip.dot(q));
+  q *= tip_deflection_m / tip;
+}
+
+}  // namespace rotbeam::testing

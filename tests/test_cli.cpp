@@ -1,0 +1,109 @@
+// The rotbeam binary as a user runs it: outputs, JSON field names (SPEC §7), exit codes.
+#include <array>
+#include <cstdio>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <sys/wait.h>
+
+namespace {
+struct CliRun {
+  int status;
+  std::string out;
+  std::string err;
+};
+
+CliRun run(const std::string& args) {
+  const std::string err_file = ::testing::TempDir() + "rotbeam_cli_stderr.txt";
+  const std::string cmd = std::string(ROTBEAM_CLI) + " " + args + " 2>" + err_file;
+  CliRun r{};
+  FILE* pipe = popen(cmd.c_str(), "r");
+  std::array<char, 4096> buf{};
+  while (std::size_t got = fread(buf.data(), 1, buf.size(), pipe)) r.out.append(buf.data(), got);
+  const int st = pclose(pipe);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  if (FILE* f = fopen(err_file.c_str(), "r")) {
+    while (std::size_t got = fread(buf.data(), 1, buf.size(), f)) r.err.append(buf.data(), got);
+    fclose(f);
+  }
+  return r;
+}
+}  // namespace
+
+TEST(Cli, ImpactPrintsTheBaseCaseTableRow) {
+  const CliRun r = run("impact");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("550 | 1.0319 | -0.5129 | 1.5448"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("-8.1096"), std::string::npos);
+}
+
+TEST(Cli, ImpactJsonHasTheStableFieldNames) {
+  const CliRun r = run("impact --set hub.speed_rpm=3000 --set initial.modal_velocity=[2,0,0,0,0] --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* k : {"t_s", "theta_deg", "y_tip_m", "vx_before_m_s", "vx_after_m_s", "delta_vx_m_s", "restitution"})
+    EXPECT_TRUE(j.contains(k)) << k;
+  EXPECT_NEAR(j["vx_before_m_s"].get<double>(), 5.0358, 0.5e-4);
+  EXPECT_NEAR(j["vx_after_m_s"].get<double>(), -1.6842, 0.5e-4);
+  EXPECT_EQ(j["config"]["initial"]["start"], "flexible");
+}
+
+TEST(Cli, ModesJsonIsOneRowPerSpeedAscending) {
+  const CliRun r = run("modes --speeds-rpm 0:3000:4 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["speeds_rpm"].size(), 4u);
+  EXPECT_EQ(j["speeds_rpm"][1].get<double>(), 1000.0);
+  ASSERT_EQ(j["frequencies_hz"].size(), 4u);
+  EXPECT_EQ(j["frequencies_hz"][0].size(), 5u);
+  EXPECT_NEAR(j["frequencies_hz"][0][0].get<double>(), 93.603, 1e-3);
+  EXPECT_LT(j["frequencies_hz"][0][0].get<double>(), j["frequencies_hz"][3][0].get<double>());
+}
+
+TEST(Cli, ModesDefaultTableAndCsv) {
+  const CliRun r = run("modes");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("f5_hz"), std::string::npos);
+  EXPECT_NE(r.out.find("3000.0"), std::string::npos);
+  const std::string csv = ::testing::TempDir() + "rotbeam_modes.csv";
+  ASSERT_EQ(run("modes --speeds-rpm 550 --csv " + csv).status, 0);
+  FILE* f = fopen(csv.c_str(), "r");
+  ASSERT_NE(f, nullptr);
+  char line[256];
+  ASSERT_NE(fgets(line, sizeof line, f), nullptr);
+  fclose(f);
+  EXPECT_EQ(std::string(line), "speed_rpm,f1_hz,f2_hz,f3_hz,f4_hz,f5_hz\n");
+}
+
+TEST(Cli, HelpOnEachCommand) {
+  for (const char* c : {"--help", "modes --help", "impact --help"}) {
+    const CliRun r = run(c);
+    EXPECT_EQ(r.status, 0) << c;
+    EXPECT_NE(r.out.find("Usage"), std::string::npos) << c;
+  }
+}
+
+TEST(Cli, BadInputIsOneLineNamingTheKeyWithExitCode2) {
+  struct Bad {
+    const char* args;
+    const char* names;
+  };
+  for (const Bad& b : {Bad{"impact --set surface.depth_fraction=-1", "surface.depth_fraction"},
+                       Bad{"impact --set hub.sped_rpm=3", "hub.speed_rpm"},
+                       Bad{"impact /nonexistent.toml", "/nonexistent.toml"},
+                       Bad{"modes --speeds-rpm 0:x:3", "--speeds-rpm"},
+                       Bad{"modes --csv /nonexistent-dir/x.csv", "/nonexistent-dir/x.csv"},
+                       Bad{"frobnicate", "frobnicate"}}) {
+    const CliRun r = run(b.args);
+    EXPECT_NE(r.status, 0) << b.args;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << b.args << ": " << r.err;
+    EXPECT_NE(r.err.find(b.names), std::string::npos) << b.args << ": " << r.err;
+  }
+  EXPECT_EQ(run("impact --set beam.modes=0").status, 2);
+}
+
+TEST(Cli, NoImpactBeforeTheEndAngleIsReported) {
+  const CliRun r = run("impact --set initial.modal_velocity=[0.1,0,0,0,0] --set simulation.end_angle_deg=-20");
+  EXPECT_EQ(r.status, 3);
+  EXPECT_NE(r.err.find("no impact"), std::string::npos) << r.err;
+}

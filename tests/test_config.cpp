@@ -1,0 +1,122 @@
+// Configuration (SPEC §9): defaults, overrides, and one-line errors that name the key and value.
+#include "rotbeam/config.hpp"
+
+#include <fstream>
+#include <gtest/gtest.h>
+
+using namespace rotbeam;
+
+namespace {
+std::string error_of(const std::string& toml, const std::vector<std::string>& sets = {}) {
+  try {
+    load_config_string(toml, sets);
+  } catch (const ConfigError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << "error must be one line: " << msg;
+    return msg;
+  }
+  ADD_FAILURE() << "no error for: " << toml;
+  return {};
+}
+}  // namespace
+
+TEST(Config, DefaultsAreTheThesisBaseCase) {
+  const Config c = load_config_string("", {});
+  EXPECT_EQ(c.physical.length_m, 0.0635);
+  EXPECT_EQ(c.physical.hub_radius_m, 0.0635);
+  EXPECT_EQ(c.physical.diameter_m, 5.08e-4);
+  EXPECT_EQ(c.physical.density_kg_m3, 7800.0);
+  EXPECT_EQ(c.physical.youngs_modulus_pa, 2.2e11);
+  EXPECT_EQ(c.physical.speed_rpm, 550.0);
+  EXPECT_EQ(c.physical.depth_fraction, 0.02);
+  EXPECT_EQ(c.physical.friction, 0.4);
+  EXPECT_EQ(c.physical.modes, 5);
+  EXPECT_EQ(c.start, "rigid");
+  EXPECT_EQ(c.scheme, "adaptive");
+  EXPECT_EQ(c.end_angle_deg, 90.0);
+  EXPECT_EQ(c.impact.model, RestitutionModel::yigit);
+  EXPECT_EQ(c.impact.cap, 1.0);
+  EXPECT_EQ(c.impact.speed, RestitutionSpeed::normal);
+  EXPECT_FALSE(c.thesis_forces);
+  EXPECT_EQ(c.modal_velocity, std::vector<double>(5, 0.0));
+}
+
+TEST(Config, ExampleFileEqualsTheDefaults) {
+  const Config file = load_config(std::string(ROTBEAM_SOURCE_DIR) + "/examples/thesis-base.toml", {});
+  EXPECT_EQ(file.to_json(), load_config_string("", {}).to_json());
+}
+
+TEST(Config, OverridesAreReadAsTomlValues) {
+  const Config c = load_config_string("[hub]\nspeed_rpm = 1000\n",
+                                      {"hub.speed_rpm=3000", "initial.modal_velocity=[2,0,0,0,0]",
+                                       "impact.restitution=0.5", "simulation.scheme=thesis", "beam.modes=5"});
+  EXPECT_EQ(c.physical.speed_rpm, 3000.0);
+  EXPECT_EQ(c.start, "flexible");  // non-zero modal velocity implies a flexible start
+  EXPECT_EQ(c.modal_velocity[0], 2.0);
+  EXPECT_EQ(c.impact.model, RestitutionModel::constant);
+  EXPECT_EQ(c.impact.constant, 0.5);
+  EXPECT_EQ(c.scheme, "thesis");  // a bare word is a string
+  const Config quoted = load_config_string("", {"simulation.scheme=\"thesis\"", "compat.restitution_speed=full"});
+  EXPECT_EQ(quoted.scheme, "thesis");
+  EXPECT_EQ(quoted.impact.speed, RestitutionSpeed::full);
+}
+
+TEST(Config, ErrorsNameTheKeyAndTheValue) {
+  struct Bad {
+    std::string toml;
+    std::vector<std::string> sets;
+    std::vector<std::string> must_contain;
+  };
+  const std::vector<Bad> cases = {
+      {"[beam]\nlength_m = -0.1\n", {}, {"beam.length_m", "-0.1"}},
+      {"[beam]\nlength_m = nan\n", {}, {"beam.length_m", "nan", "finite"}},
+      {"[beam]\ndiameter_m = inf\n", {}, {"beam.diameter_m", "inf"}},
+      {"[beam]\nmodes = 0\n", {}, {"beam.modes", "0"}},
+      {"[beam]\nmodes = 5.0\n", {}, {"beam.modes", "integer"}},
+      {"[beam]\nmodes = 1000\n", {}, {"beam.modes", "1000"}},
+      {"[beam]\nlenght_m = 0.1\n", {}, {"beam.lenght_m", "unknown key", "beam.length_m"}},
+      {"[hub]\nspeed_rpm = \"fast\"\n", {}, {"hub.speed_rpm", "\"fast\"", "number"}},
+      {"[hub]\nspeed_rpm = 0\n", {}, {"hub.speed_rpm", "0"}},
+      {"[surface]\ndepth_fraction = 0\n", {}, {"surface.depth_fraction", "0"}},
+      {"[surface]\ndepth_fraction = -0.02\n", {}, {"surface.depth_fraction", "-0.02"}},
+      {"[surface]\nfriction = -0.4\n", {}, {"surface.friction", "-0.4"}},
+      {"[impact]\nrestitution = 1.5\n", {}, {"impact.restitution", "1.5"}},
+      {"[impact]\nrestitution = \"newton\"\n", {}, {"impact.restitution", "newton"}},
+      {"[initial]\nmodal_velocity = [1, 2]\n", {}, {"initial.modal_velocity", "5 values"}},
+      {"[initial]\nstart = \"rigid\"\nmodal_velocity = [1, 0, 0, 0, 0]\n", {}, {"initial.start", "rigid"}},
+      {"[simulation]\nend_angle_deg = -95\n", {}, {"simulation.end_angle_deg", "-95"}},
+      {"[simulation]\nend_angle_deg = -30\n", {}, {"simulation.end_angle_deg", "after the end angle"}},
+      {"[simulation]\nscheme = \"euler\"\n", {}, {"simulation.scheme", "euler", "adaptive"}},
+      {"[compat]\nthesis_forces = 1\n", {}, {"compat.thesis_forces", "true or false"}},
+      {"[nosuch]\nx = 1\n", {}, {"nosuch.x", "unknown key"}},
+      {"speed = 3\n", {}, {"speed", "[section]"}},
+      {"[beam\n", {}, {"TOML syntax error", "line 1"}},
+      {"", {"hub.speed=3000"}, {"hub.speed", "unknown key", "hub.speed_rpm"}},
+      {"", {"speed_rpm=3000"}, {"speed_rpm", "section.key"}},
+      {"", {"hub.speed_rpm"}, {"hub.speed_rpm", "section.key=value"}},
+      {"", {"hub.speed_rpm=fast"}, {"hub.speed_rpm", "\"fast\""}},
+  };
+  for (const Bad& b : cases) {
+    const std::string msg = error_of(b.toml, b.sets);
+    for (const std::string& part : b.must_contain)
+      EXPECT_NE(msg.find(part), std::string::npos) << "'" << msg << "' lacks '" << part << "'";
+  }
+}
+
+TEST(Config, MissingFileIsNamed) {
+  try {
+    load_config(std::string("/nonexistent/case.toml"), {});
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/case.toml"), std::string::npos);
+  }
+}
+
+TEST(Config, ResolvedJsonRoundTripsThroughToml) {
+  const Config c = load_config_string("", {"beam.modes=3", "initial.modal_velocity=[0.1,0,0]", "hub.speed_rpm=2000"});
+  const nlohmann::json j = c.to_json();
+  EXPECT_EQ(j["beam"]["modes"], 3);
+  EXPECT_EQ(j["initial"]["start"], "flexible");
+  EXPECT_EQ(j["hub"]["speed_rpm"], 2000.0);
+  EXPECT_EQ(config_keys().size(), 22u);
+}

@@ -1,0 +1,132 @@
+// Every term of the equations of motion (SPEC §3) against numerical differentiation of the
+// Lagrangian evaluated by direct quadrature (tests/reference_beam.*).
+//
+// For L(q, q̇) the Lagrange equations read M q̈ + Ψ = 0 with
+//   M = ∂²L/∂q̇²,  Ψ = (∂p/∂q) q̇ − ∂L/∂q,  p = ∂L/∂q̇.
+// L is a polynomial of degree ≤ 4 in (q, q̇), so a central difference is exact for the quadratic
+// dependence on q̇, and a Richardson-extrapolated central difference (steps δ and δ/2) is exact
+// for quartics: the only errors left are round-off and the reference quadrature (~1e-13).
+// Splitting L into T2, T1, T0 and −U isolates each term:
+//   T2 → D(q,q̇)q̇ (and M),  T1 → 2ωG(q)q̇,  T0 → K_ω(q)q,  −U → K_b(q)q.
+#include "reference_beam.hpp"
+#include "rotbeam/dynamics.hpp"
+
+#include <functional>
+#include <gtest/gtest.h>
+
+using namespace rotbeam;
+using rotbeam::testing::ReferenceBeam;
+
+namespace {
+
+using Scalar2 = std::function<double(const Eigen::VectorXd&, const Eigen::VectorXd&)>;
+
+// ∂f/∂x_i by Richardson-extrapolated central differences along direction d.
+double directional(const std::function<double(double)>& f, double delta) {
+  const double d1 = (f(delta) - f(-delta)) / (2 * delta);
+  const double d2 = (f(delta / 2) - f(-delta / 2)) / delta;
+  return (4 * d2 - d1) / 3;
+}
+
+Eigen::VectorXd momentum(const Scalar2& lag, const Eigen::VectorXd& q, const Eigen::VectorXd& v, double dv) {
+  Eigen::VectorXd p(q.size());
+  for (int i = 0; i < q.size(); ++i) {
+    Eigen::VectorXd vp = v, vm = v;
+    vp[i] += dv;
+    vm[i] -= dv;
+    p[i] = (lag(q, vp) - lag(q, vm)) / (2 * dv);  // exact: L is quadratic in q̇
+  }
+  return p;
+}
+
+// Ψ_i = Σ_j ∂p_i/∂q_j q̇_j − ∂L/∂q_i.
+Eigen::VectorXd psi_from_lagrangian(const Scalar2& lag, const Eigen::VectorXd& q, const Eigen::VectorXd& v, double dq,
+                                    double dv) {
+  const int n = static_cast<int>(q.size());
+  Eigen::VectorXd psi(n);
+  const double vn = std::max(v.norm(), 1e-30);
+  for (int i = 0; i < n; ++i) {
+    auto p_along_v = [&](double e) {
+      Eigen::VectorXd qe = q + (e / vn) * v;
+      return momentum(lag, qe, v, dv)[i];
+    };
+    const double dp = v.norm() > 0 ? vn * directional(p_along_v, dq) : 0.0;
+    auto l_along_qi = [&](double e) {
+      Eigen::VectorXd qe = q;
+      qe[i] += e;
+      return lag(qe, v);
+    };
+    psi[i] = dp - directional(l_along_qi, dq);
+  }
+  return psi;
+}
+
+struct Case {
+  int n;
+  double rpm;
+  double tip_m;
+  unsigned seed;
+};
+
+class LagrangianCheck : public ::testing::TestWithParam<Case> {};
+
+TEST_P(LagrangianCheck, MassMatrixAndEveryForceTermMatchTheLagrangian) {
+  const Case c = GetParam();
+  PhysicalParameters pp;
+  pp.modes = c.n;
+  pp.speed_rpm = c.rpm;
+  const Model model = make_model(pp);
+  const ReferenceBeam ref(model, c.n <= 5 ? 16 : 24);
+  Eigen::VectorXd q, v;
+  rotbeam::testing::random_state(model, c.seed, c.tip_m, 2.0, q, v);
+
+  Workspace ws(c.n);
+  evaluate_dynamics(model, q, v, ws);
+
+  // M = ∂²T2/∂q̇² (T1 is linear and T0, U independent of q̇).
+  const double dv = 0.5;
+  Eigen::MatrixXd m_fd(c.n, c.n);
+  for (int i = 0; i < c.n; ++i)
+    for (int j = 0; j < c.n; ++j) {
+      auto t2 = [&](double a, double b) {
+        Eigen::VectorXd vv = v;
+        vv[i] += a;
+        vv[j] += b;
+        return ref.lagrangian(q, vv);
+      };
+      m_fd(i, j) = (t2(dv, dv) - t2(dv, -dv) - t2(-dv, dv) + t2(-dv, -dv)) / (4 * dv * dv);
+    }
+  // Tolerance: 1e-9 of m. The second difference of L (≈ T0 ~ 1e-3…5e-2 J) loses ~1e-16·L/dv²
+  // ≈ 1e-16 kg, far below; the reference quadrature is good to ~1e-13 relative.
+  EXPECT_LE((ws.mass - m_fd).cwiseAbs().maxCoeff(), 1e-9 * model.mass) << "M(q)";
+
+  const double dq = 2e-4;  // the extrapolated difference is exact for quartics; this only sets round-off
+  const Scalar2 t2 = [&](auto& a, auto& b) { return ref.t2(a, b); };
+  const Scalar2 t1 = [&](auto& a, auto& b) { return ref.t1(a, b); };
+  const Scalar2 t0 = [&](auto& a, auto&) { return ref.t0(a); };
+  const Scalar2 u = [&](auto& a, auto&) { return -ref.potential(a); };
+  const Eigen::VectorXd fore = psi_from_lagrangian(t2, q, v, dq, dv);
+  const Eigen::VectorXd gyro = psi_from_lagrangian(t1, q, v, dq, dv);
+  const Eigen::VectorXd centri = psi_from_lagrangian(t0, q, v, dq, dv);
+  const Eigen::VectorXd bend = psi_from_lagrangian(u, q, v, dq, dv);
+  // Each term is compared relative to the size of the total Ψ (and of the term itself), at 1e-7:
+  // round-off of the differences is ~1e-16·L/dq ≈ 1e-13…1e-11 N against Ψ ≈ 1e-3…10 N.
+  const double scale = std::max({ws.psi.cwiseAbs().maxCoeff(), ws.bending.cwiseAbs().maxCoeff(), 1e-12});
+  auto check = [&](const Eigen::VectorXd& got, const Eigen::VectorXd& want, const char* what) {
+    const double err = (got - want).cwiseAbs().maxCoeff();
+    const double size = std::max(want.cwiseAbs().maxCoeff(), 1e-3 * scale);
+    EXPECT_LE(err, 1e-7 * size) << what << "\n got  " << got.transpose() << "\n want " << want.transpose();
+  };
+  check(ws.foreshortening, fore, "D(q,q̇)q̇");
+  check(ws.gyroscopic, gyro, "2ωG(q)q̇");
+  check(ws.centrifugal, centri, "K_ω(q)q");
+  check(ws.bending, bend, "K_b(q)q");
+  check(ws.psi, fore + gyro + centri + bend, "Ψ");
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    RandomStates, LagrangianCheck,
+    ::testing::Values(Case{2, 550, 0.01, 1}, Case{2, 3000, 0.03, 2}, Case{5, 550, 0.005, 3}, Case{5, 550, 0.03, 4},
+                      Case{5, 3000, 0.02, 5}, Case{10, 550, 0.03, 6}, Case{10, 3000, 0.01, 7}));
+
+}  // namespace
