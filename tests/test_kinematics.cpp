@@ -61,6 +61,16 @@ TEST_P(KinematicsCheck, GradientsRatesAndGammaMatchFiniteDifferences) {
   EXPECT_NEAR(k.gap_rate, rate, 1e-9 * model.omega * (model.hub_radius + model.length)) << "Ċ";
   EXPECT_NEAR(k.VX, k.gap_rate, 1e-15);
   EXPECT_NEAR(k.grad_gap.dot(a) + k.gamma, accel, 1e-6 * scale) << "C̈ = ∇Cᵀq̈ + γ";
+  // Ÿ_t = (∂Y_t/∂q)ᵀa + γ_Y along the same trajectory (same error budget).
+  auto y_traj = [&](double tt) {
+    TipKinematics kk(s.n);
+    Eigen::VectorXd qt = q + v * tt + 0.5 * a * tt * tt;
+    tip_kinematics(model, s.t + tt, qt, v, kk);
+    return kk.Y;
+  };
+  const double y2 = (y_traj(tau) - 2 * y_traj(0) + y_traj(-tau)) / (tau * tau);
+  const double y2h = (y_traj(tau / 2) - 2 * y_traj(0) + y_traj(-tau / 2)) / (tau * tau / 4);
+  EXPECT_NEAR(k.grad_y.dot(a) + k.gamma_y, (4 * y2h - y2) / 3, 1e-6 * scale) << "Ÿ = (∂Y/∂q)ᵀq̈ + γ_Y";
   // ∂C/∂t alone (q frozen).
   const double dt = 1e-6;
   EXPECT_NEAR(k.gap_time_partial, (gap(model, s.t + dt, q) - gap(model, s.t - dt, q)) / (2 * dt),

@@ -5,6 +5,7 @@
 //   ∇C = −(cos θ/L) ISP(1) q − sin θ S(1),  ∂C/∂t = −ω Y_t,  Ċ = ∇Cᵀq̇ + ∂C/∂t = V_X
 //   C̈ = ∇Cᵀq̈ + γ, γ = −(cos θ/L) q̇ᵀISP(1)q̇ + 2ω[(sin θ/L) qᵀISP(1)q̇ − cos θ S(1)ᵀq̇] − ω² X_t
 //   ∂Y_t/∂q = −(sin θ/L) ISP(1) q + cos θ S(1)
+//   Ÿ_t = (∂Y_t/∂q)ᵀq̈ + γ_Y, γ_Y = −(sin θ/L) q̇ᵀISP(1)q̇ − 2ω[(cos θ/L) qᵀISP(1)q̇ + sin θ S(1)ᵀq̇] − ω² Y_t
 #pragma once
 
 #include "rotbeam/model.hpp"
@@ -24,6 +25,7 @@ struct TipKinematics {
   double gap_rate = 0;       // Ċ = V_X [m/s]
   double gap_time_partial = 0;  // ∂C/∂t = −ω Y_t [m/s]
   double gamma = 0;          // γ [m/s²]
+  double gamma_y = 0;        // γ_Y [m/s²], the tangential counterpart of γ
   Eigen::VectorXd grad_gap;  // ∇C (dimensionless)
   Eigen::VectorXd grad_y;    // ∂Y_t/∂q (dimensionless)
 };

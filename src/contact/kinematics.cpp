@@ -39,6 +39,7 @@ void tip_kinematics(const Model& model, double t, const Eigen::Ref<const Eigen::
   k.grad_gap = -(c / L) * isp_q - s * mi.s_tip;
   k.gap_rate = k.grad_gap.dot(qd) + k.gap_time_partial;
   k.gamma = -(c / L) * v_isp_v + 2.0 * w * ((s / L) * q_isp_v - c * s_v) - w * w * k.X;
+  k.gamma_y = -(s / L) * v_isp_v - 2.0 * w * ((c / L) * q_isp_v + s * s_v) - w * w * k.Y;
   k.grad_y = -(s / L) * isp_q + c * mi.s_tip;  // overwrites isp_q last
 }
 
