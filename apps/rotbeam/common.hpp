@@ -16,6 +16,7 @@ enum ExitCode : int {
   kRuntimeFailure = 1,  // I/O failure or an unexpected internal error
   kBadInput = 2,        // command line or configuration rejected
   kNoImpact = 3,        // `rotbeam impact`: the tip never reached the surface before the end angle
+  kNumericalFailure = 4,// a pass stopped on a diagnosed numerical failure (partial results written)
 };
 
 /// The CONFIG positional and the repeatable --set option of a case-based subcommand.

@@ -16,8 +16,10 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "rotbeam 0.1.0");
   Command modes = add_modes_command(app);
   Command impact = add_impact_command(app);
-  if (argc > 1 && argv[1][0] != '-' && std::string(argv[1]) != "modes" && std::string(argv[1]) != "impact") {
-    print_error("unknown command '" + std::string(argv[1]) + "' (commands: modes, impact; see rotbeam --help)");
+  Command run = add_run_command(app);
+  if (argc > 1 && argv[1][0] != '-' && std::string(argv[1]) != "modes" && std::string(argv[1]) != "impact" &&
+      std::string(argv[1]) != "run") {
+    print_error("unknown command '" + std::string(argv[1]) + "' (commands: modes, impact, run; see rotbeam --help)");
     return kBadInput;
   }
   try {
@@ -35,6 +37,7 @@ int main(int argc, char** argv) {
   try {
     if (app.got_subcommand("modes")) return modes();
     if (app.got_subcommand("impact")) return impact();
+    if (app.got_subcommand("run")) return run();
   } catch (const rotbeam::ConfigError& e) {
     print_error(e.what());
     return kBadInput;

@@ -6,6 +6,7 @@
 #include "rotbeam/first_impact.hpp"
 #include "rotbeam/impact.hpp"
 #include "rotbeam/model.hpp"
+#include "rotbeam/pass.hpp"
 
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -22,18 +23,31 @@ public:
 
 struct Config {
   PhysicalParameters physical;             // [beam], [hub], [surface]
-  ImpactLaw impact{RestitutionModel::yigit, 0.5, 1.0, 1e-3, RestitutionSpeed::normal};  // [impact], compat.restitution_speed
+  ImpactLaw impact;                        // [impact], compat.restitution_speed
   std::string start = "rigid";             // initial.start as resolved ("rigid" | "flexible")
   std::vector<double> modal_velocity;      // initial.modal_velocity [m/s], n values
   std::vector<double> modal_displacement;  // initial.modal_displacement [m], n values
-  std::string scheme = "adaptive";         // simulation.scheme
+  std::string scheme = "thesis";           // simulation.scheme
   double end_angle_deg = 90.0;             // simulation.end_angle_deg
   double rtol = 1e-9, atol = 1e-12;        // simulation.rtol / atol (adaptive scheme)
   double free_step_s = 1e-6;               // simulation.free_step_s (thesis scheme, free flight)
+  double contact_step_s = 1e-7;            // simulation.contact_step_s
+  double fine_contact_step_s = 1e-8;       // simulation.fine_contact_step_s
+  double fine_below_n = 1e-4;              // simulation.fine_below_n
+  double corrector_tolerance = 1e-5;       // simulation.corrector_tolerance
+  int corrector_max_iterations = 50;       // simulation.corrector_max_iterations
+  int max_impacts = 10000;                 // simulation.max_impacts
+  double deflection_warning_ratio = 0.1;   // simulation.deflection_warning_ratio
+  double output_interval_s = 1e-5;         // output.interval_s
   bool thesis_forces = false;              // compat.thesis_forces
+  bool thesis_dcdt = false;                // compat.thesis_dcdt
 
   /// The initial conditions this configuration describes.
   InitialConditions initial_conditions() const;
+  /// Options of a whole pass.
+  PassOptions pass_options() const;
+  /// Friction as configured (surface.friction, compat.thesis_forces).
+  FrictionModel friction_model() const;
   /// End angle in radians.
   double end_angle_rad() const;
   /// The resolved configuration as a JSON object with the TOML's sections and keys.

@@ -17,7 +17,10 @@ struct ImpactLaw {
   RestitutionModel model = RestitutionModel::yigit;
   double constant = 0.5;          // e when model == constant, in [0, 1]
   double cap = 1.0;               // upper bound on e (Yigit's law exceeds 1 below 0.0634 m/s)
-  double plastic_below_m_s = 0.0; // normal speeds below this give e = 0 (ends Zeno sequences)
+  // Normal speeds below this give e = 0. Default: where Yigit's law reaches e = 1 (0.501⁴ ≈ 0.063 m/s);
+  // below it the capped law bounces elastically and a bounce sequence could never settle into
+  // sustained contact (see docs/configuration.md).
+  double plastic_below_m_s = 0.063;
   RestitutionSpeed speed = RestitutionSpeed::normal;  // `full`: Appendix B jump.m (|V_tip|)
 };
 

@@ -152,7 +152,12 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
          p.config.modal_displacement = number_array(k, n);
          p.displacement_node = &n;
        }},
-      {"simulation.scheme", [](Parsed& p, auto& k, auto& n) { p.config.scheme = one_of(k, n, {"adaptive", "thesis"}); }},
+      {"simulation.scheme",
+       [](Parsed& p, auto& k, auto& n) {
+         p.config.scheme = one_of(k, n, {"adaptive", "thesis"});
+         if (p.config.scheme == "adaptive")
+           fail(k, n, "the adaptive scheme is not available in this version; use \"thesis\"");
+       }},
       {"simulation.end_angle_deg",
        [](Parsed& p, auto& k, auto& n) {
          p.config.end_angle_deg = number_in(k, n, -90.0, 270.0, true, false);
@@ -161,7 +166,28 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
       {"simulation.rtol", [](Parsed& p, auto& k, auto& n) { p.config.rtol = number_in(k, n, 0.0, 1.0, true, true); }},
       {"simulation.atol", [](Parsed& p, auto& k, auto& n) { p.config.atol = positive(k, n); }},
       {"simulation.free_step_s", [](Parsed& p, auto& k, auto& n) { p.config.free_step_s = number_in(k, n, 0.0, 1e-3, true, false); }},
+      {"simulation.contact_step_s", [](Parsed& p, auto& k, auto& n) { p.config.contact_step_s = number_in(k, n, 0.0, 1e-4, true, false); }},
+      {"simulation.fine_contact_step_s", [](Parsed& p, auto& k, auto& n) { p.config.fine_contact_step_s = number_in(k, n, 0.0, 1e-4, true, false); }},
+      {"simulation.fine_below_n", [](Parsed& p, auto& k, auto& n) { p.config.fine_below_n = number_in(k, n, 0.0, INFINITY, false, true); }},
+      {"simulation.corrector_tolerance", [](Parsed& p, auto& k, auto& n) { p.config.corrector_tolerance = number_in(k, n, 0.0, 1.0, true, true); }},
+      {"simulation.corrector_max_iterations",
+       [](Parsed& p, auto& k, auto& n) {
+         if (!n.is_integer()) fail(k, n, "must be an integer");
+         const int64_t v = *n.template value<int64_t>();
+         if (v < 1 || v > 10000) fail(k, n, "must be in 1..10000");
+         p.config.corrector_max_iterations = static_cast<int>(v);
+       }},
+      {"simulation.max_impacts",
+       [](Parsed& p, auto& k, auto& n) {
+         if (!n.is_integer()) fail(k, n, "must be an integer");
+         const int64_t v = *n.template value<int64_t>();
+         if (v < 1 || v > 100000000) fail(k, n, "must be in 1..100000000");
+         p.config.max_impacts = static_cast<int>(v);
+       }},
+      {"simulation.deflection_warning_ratio", [](Parsed& p, auto& k, auto& n) { p.config.deflection_warning_ratio = positive(k, n); }},
+      {"output.interval_s", [](Parsed& p, auto& k, auto& n) { p.config.output_interval_s = number_in(k, n, 0.0, INFINITY, false, true); }},
       {"compat.thesis_forces", [](Parsed& p, auto& k, auto& n) { p.config.thesis_forces = boolean(k, n); }},
+      {"compat.thesis_dcdt", [](Parsed& p, auto& k, auto& n) { p.config.thesis_dcdt = boolean(k, n); }},
       {"compat.restitution_speed",
        [](Parsed& p, auto& k, auto& n) {
          p.config.impact.speed = one_of(k, n, {"normal", "full"}) == "full" ? RestitutionSpeed::full : RestitutionSpeed::normal;
@@ -297,6 +323,24 @@ InitialConditions Config::initial_conditions() const {
 
 double Config::end_angle_rad() const { return end_angle_deg * M_PI / 180.0; }
 
+PassOptions Config::pass_options() const {
+  PassOptions o;
+  o.end_angle_rad = end_angle_rad();
+  o.free_step_s = free_step_s;
+  o.contact_step_s = contact_step_s;
+  o.fine_contact_step_s = fine_contact_step_s;
+  o.fine_below_n = fine_below_n;
+  o.corrector_tolerance = corrector_tolerance;
+  o.corrector_max_iterations = corrector_max_iterations;
+  o.thesis_dcdt = thesis_dcdt;
+  o.output_interval_s = output_interval_s;
+  o.deflection_warning_ratio = deflection_warning_ratio;
+  o.max_impacts = max_impacts;
+  return o;
+}
+
+FrictionModel Config::friction_model() const { return FrictionModel{physical.friction, thesis_forces}; }
+
 nlohmann::json Config::to_json() const {
   nlohmann::json j;
   j["beam"] = {{"length_m", physical.length_m},
@@ -312,9 +356,21 @@ nlohmann::json Config::to_json() const {
   else
     j["impact"]["restitution"] = impact.constant;
   j["initial"] = {{"start", start}, {"modal_velocity", modal_velocity}, {"modal_displacement", modal_displacement}};
-  j["simulation"] = {{"scheme", scheme}, {"end_angle_deg", end_angle_deg}, {"rtol", rtol}, {"atol", atol},
-                     {"free_step_s", free_step_s}};
+  j["simulation"] = {{"scheme", scheme},
+                     {"end_angle_deg", end_angle_deg},
+                     {"rtol", rtol},
+                     {"atol", atol},
+                     {"free_step_s", free_step_s},
+                     {"contact_step_s", contact_step_s},
+                     {"fine_contact_step_s", fine_contact_step_s},
+                     {"fine_below_n", fine_below_n},
+                     {"corrector_tolerance", corrector_tolerance},
+                     {"corrector_max_iterations", corrector_max_iterations},
+                     {"max_impacts", max_impacts},
+                     {"deflection_warning_ratio", deflection_warning_ratio}};
+  j["output"] = {{"interval_s", output_interval_s}};
   j["compat"] = {{"thesis_forces", thesis_forces},
+                 {"thesis_dcdt", thesis_dcdt},
                  {"restitution_speed", impact.speed == RestitutionSpeed::full ? "full" : "normal"}};
   return j;
 }

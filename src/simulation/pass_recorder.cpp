@@ -106,7 +106,8 @@ void PassRecorder::sample(double t, const Eigen::VectorXd& q, const Eigen::Vecto
   energy_scale_ = std::max({energy_scale_, std::abs(e.jacobi), e.t2});
   row.hub_torque = hub_torque(t, q, qd, load);
   result_.history.push_back(std::move(row));
-  while (next_sample_t_ <= t) next_sample_t_ += options_.output_interval_s;
+  if (options_.output_interval_s <= 0.0) return;  // every accepted point is sampled
+  next_sample_t_ = options_.output_interval_s * (std::floor(t / options_.output_interval_s) + 1.0);
 }
 
 void PassRecorder::start(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {

@@ -1,0 +1,77 @@
+// `rotbeam run`: a whole pass through contact (SPEC §6, §7, §9).
+#include "commands.hpp"
+#include "common.hpp"
+
+#include "rotbeam/pass_output.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+
+namespace rotbeam::cli {
+
+namespace {
+
+struct RunOptions {
+  CaseOptions case_options;
+  std::string output_dir;
+  bool json = false;
+};
+
+void print_summary(const Config& config, const PassResult& r, const std::string& dir) {
+  const PassSummary& s = r.summary;
+  std::cout << "Pass: " << fixed(config.physical.speed_rpm, 0) << " rpm, depth "
+            << fixed(100 * config.physical.depth_fraction, 2) << " %, μ = " << config.physical.friction << ", "
+            << config.physical.modes << " modes, " << config.start << " start, " << s.scheme << " scheme\n";
+  std::cout << "  impacts               " << s.impacts << " (" << s.plastic_impacts << " plastic)\n";
+  std::cout << "  contact episodes      " << s.contact_episodes << ", " << fixed(s.contact_time_s * 1e3, 4)
+            << " ms in contact\n";
+  if (s.impacts > 0)
+    std::cout << "  contact span          θ from " << fixed(s.first_impact_deg, 3) << "° (first impact) to "
+              << fixed(s.last_separation_deg, 3) << "° (last separation)\n";
+  else
+    std::cout << "  contact span          none: the tip never reached the surface\n";
+  std::cout << "  peak normal force     " << fixed(s.peak_normal_force_n, 4) << " N (mean in contact "
+            << fixed(s.mean_normal_force_n, 4) << " N)\n";
+  std::cout << "  normal impulse        " << s.normal_impulse_n_s * 1e3 << " mN s\n";
+  std::cout << "  friction work         " << s.friction_work_j * 1e3 << " mJ\n";
+  std::cout << "  max |y_t|/L           " << fixed(s.max_tip_deflection_ratio, 4) << "\n";
+  std::cout << "  energy audit residual " << s.energy_audit_residual << "\n";
+  std::cout << "  steps                 " << s.steps << " (" << s.rhs_evaluations << " RHS evaluations), "
+            << fixed(s.wall_time_s, 3) << " s\n";
+  for (const std::string& w : s.warnings) std::cout << "  warning: " << w << "\n";
+  std::cout << "  wrote " << (std::filesystem::path(dir) / "history.csv").string() << ", events.csv, summary.json\n";
+}
+
+int run_pass_command(const RunOptions& o) {
+  const Config config = o.case_options.load();
+  if (o.output_dir.empty()) throw ConfigError("-o DIR: an output folder is required");
+  const Model model = make_model(config.physical);
+  const PassResult r =
+      run_thesis_pass(model, config.impact, config.friction_model(), config.initial_conditions(), config.pass_options());
+  write_pass_outputs(o.output_dir, r, config);
+  if (o.json)
+    std::cout << summary_json(r, config).dump(2) << "\n";
+  else
+    print_summary(config, r, o.output_dir);
+  if (r.failure) {
+    print_error("numerical failure (" + r.failure->kind + ") at t = " + std::to_string(r.failure->t) +
+                " s, θ = " + fixed(r.failure->theta * 180.0 / M_PI, 4) + " deg: " + r.failure->message +
+                "; results up to there are in " + o.output_dir);
+    return kNumericalFailure;
+  }
+  return kSuccess;
+}
+
+}  // namespace
+
+Command add_run_command(CLI::App& app) {
+  auto opts = std::make_shared<RunOptions>();
+  CLI::App* sub = app.add_subcommand("run", "A whole pass: impacts, contact with friction, separation; writes history, events, summary");
+  opts->case_options.add_to(*sub);
+  sub->add_option("-o,--output", opts->output_dir, "Output folder (created if needed)")->required();
+  sub->add_flag("--json", opts->json, "Print summary.json instead of the human summary");
+  return [opts] { return run_pass_command(*opts); };
+}
+
+}  // namespace rotbeam::cli
