@@ -107,3 +107,74 @@ TEST(Cli, NoImpactBeforeTheEndAngleIsReported) {
   EXPECT_EQ(r.status, 3);
   EXPECT_NE(r.err.find("no impact"), std::string::npos) << r.err;
 }
+
+namespace {
+std::string slurp(const std::string& path) {
+  std::string s;
+  if (FILE* f = fopen(path.c_str(), "r")) {
+    std::array<char, 4096> buf{};
+    while (std::size_t got = fread(buf.data(), 1, buf.size(), f)) s.append(buf.data(), got);
+    fclose(f);
+  }
+  return s;
+}
+}  // namespace
+
+TEST(Cli, RunWritesHistoryEventsAndSummary) {
+  const std::string dir = ::testing::TempDir() + "rotbeam_run_base";
+  const CliRun r = run("run -o " + dir);
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* line : {"impacts", "contact episodes", "contact span", "peak normal force", "normal impulse"})
+    EXPECT_NE(r.out.find(line), std::string::npos) << line;
+  const auto j = nlohmann::json::parse(slurp(dir + "/summary.json"));
+  for (const char* k : {"impacts", "contact_episodes", "first_impact_deg", "last_separation_deg", "contact_time_s",
+                        "peak_normal_force_n", "normal_impulse_n_s", "friction_work_j", "max_tip_deflection_ratio",
+                        "energy_audit_residual", "steps", "rhs_evaluations", "wall_time_s", "scheme", "warnings",
+                        "config", "contact_intervals", "failure"})
+    EXPECT_TRUE(j.contains(k)) << k;
+  EXPECT_EQ(j["scheme"], "thesis");
+  EXPECT_TRUE(j["failure"].is_null());
+  EXPECT_NEAR(j["first_impact_deg"].get<double>(), -8.1096, 1e-4);
+  EXPECT_GT(j["impacts"].get<int>(), 1);
+  EXPECT_GT(j["max_tip_deflection_ratio"].get<double>(), 0.1);
+  EXPECT_FALSE(j["warnings"].empty());  // the validity warning of SPEC §10
+  const std::string history = slurp(dir + "/history.csv");
+  EXPECT_EQ(history.rfind("t_s,theta_deg,phase,x_tip_m,y_tip_m,gap_m,vx_m_s,vy_m_s,normal_force_n,friction_force_n,"
+                          "lambda_n,q1_m,",
+                          0),
+            0u);
+  EXPECT_NE(history.find(",contact,"), std::string::npos);
+  const std::string events = slurp(dir + "/events.csv");
+  EXPECT_NE(events.find(",impact,"), std::string::npos);
+  EXPECT_NE(events.find(",contact_start,"), std::string::npos);
+  EXPECT_NE(events.find(",end,"), std::string::npos);
+}
+
+TEST(Cli, RunHistoryIntervalIsConfigurable) {
+  const std::string a = ::testing::TempDir() + "rotbeam_run_i1", b = ::testing::TempDir() + "rotbeam_run_i2";
+  ASSERT_EQ(run("run --set output.interval_s=1e-4 -o " + a).status, 0);
+  ASSERT_EQ(run("run --set output.interval_s=1e-5 -o " + b).status, 0);
+  const auto lines = [](const std::string& s) { return std::count(s.begin(), s.end(), '\n'); };
+  EXPECT_LT(lines(slurp(a + "/history.csv")) * 3, lines(slurp(b + "/history.csv")));
+  EXPECT_EQ(slurp(a + "/events.csv"), slurp(b + "/events.csv"));  // events do not depend on sampling
+}
+
+TEST(Cli, RunReportsANumericalFailureAndKeepsThePartialResult) {
+  // One corrector iteration cannot meet the tolerance: a diagnosed stop with t and θ, exit code 4.
+  const std::string dir = ::testing::TempDir() + "rotbeam_run_fail";
+  const CliRun r = run("run --set simulation.corrector_max_iterations=1 --set impact.plastic_below_m_s=10 -o " + dir);
+  EXPECT_EQ(r.status, 4) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find("corrector"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("θ = "), std::string::npos) << r.err;
+  const auto j = nlohmann::json::parse(slurp(dir + "/summary.json"));
+  EXPECT_EQ(j["failure"]["kind"], "corrector");
+  EXPECT_GT(j["steps"].get<long>(), 0);
+}
+
+TEST(Cli, RunRejectsAnUnwritableOutputFolder) {
+  const CliRun r = run("run -o /proc/rotbeam-cannot-write-here");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find("/proc/rotbeam-cannot-write-here"), std::string::npos) << r.err;
+}

@@ -46,6 +46,11 @@ void print_summary(const Config& config, const PassResult& r, const std::string&
 int run_pass_command(const RunOptions& o) {
   const Config config = o.case_options.load();
   if (o.output_dir.empty()) throw ConfigError("-o DIR: an output folder is required");
+  try {
+    prepare_output_folder(o.output_dir);
+  } catch (const std::exception& e) {
+    throw ConfigError(std::string("-o ") + e.what());
+  }
   const Model model = make_model(config.physical);
   const PassResult r =
       run_thesis_pass(model, config.impact, config.friction_model(), config.initial_conditions(), config.pass_options());

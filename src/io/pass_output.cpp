@@ -132,12 +132,19 @@ nlohmann::json summary_json(const PassResult& result, const Config& config) {
   return j;
 }
 
-void write_pass_outputs(const std::filesystem::path& dir, const PassResult& result, const Config& config) {
+void prepare_output_folder(const std::filesystem::path& dir) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec || !std::filesystem::is_directory(dir))
     throw std::runtime_error(dir.string() + ": cannot create the output folder (" +
                              (ec ? ec.message() : std::string("not a folder")) + ")");
+  const std::filesystem::path probe = dir / ".rotbeam-write-check";
+  write_file_atomically(probe, "");
+  std::filesystem::remove(probe, ec);
+}
+
+void write_pass_outputs(const std::filesystem::path& dir, const PassResult& result, const Config& config) {
+  prepare_output_folder(dir);
   const int n = config.physical.modes;
   write_file_atomically(dir / "history.csv", history_csv(result, n));
   write_file_atomically(dir / "events.csv", events_csv(result));
