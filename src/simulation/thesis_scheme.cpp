@@ -339,8 +339,8 @@ private:
 
   Next fail_painleve(double a, double b, double c) {
     rec_.fail("painleve", t_,
-              "Painlevé's paradox: a λ + b|λ| = c has " + std::string(c > 0 ? "two" : "no") +
-                  " admissible solution (a = " + fmt(a) + " 1/kg, b = " + fmt(b) + " 1/kg, c = " + fmt(c) +
+              "Painlevé's paradox: a λ + b|λ| = c has " +
+                  std::string(c > 0 ? "two admissible solutions" : "no admissible solution") + " (a = " + fmt(a) + " 1/kg, b = " + fmt(b) + " 1/kg, c = " + fmt(c) +
                   " m/s², a − b = " + fmt(a - b) + ")");
     rec_.finish(t_, q_, qd_, Phase::contact, load_prev_);
     return Next::done;
