@@ -90,18 +90,26 @@ INSTANTIATE_TEST_SUITE_P(Cases, ImpactBalance,
                          ::testing::Values(ImpactCase{2, 550, 0.5, 1}, ImpactCase{5, 550, 0.0, 2},
                                            ImpactCase{5, 3000, 1.0, 3}, ImpactCase{10, 1000, 0.3, 4}));
 
+namespace {
+// The impact of the straight beam at the geometric contact angle of the base case.
+struct StraightBeamImpact {
+  Model model = make_model(PhysicalParameters{});
+  Workspace ws{model.n};
+  TipKinematics tip{model.n};
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(model.n);
+  Eigen::VectorXd qd = Eigen::VectorXd::Zero(model.n);
+  ImpactResult apply(const ImpactLaw& law) {
+    return apply_impact(model, law, model.time_at(model.rigid_contact_angle()), q, qd, ws, tip);
+  }
+};
+}  // namespace
+
 TEST(Impact, RigidStartImpactSetsTheBeamVibrating) {
   // q̇⁻ = 0 at the straight-beam impact: T2 jumps from 0 to ½P²a (SPEC §5).
-  const Model model = make_model(PhysicalParameters{});
-  const int n = model.n;
-  Workspace ws(n);
-  TipKinematics tip(n);
-  const double t = model.time_at(model.rigid_contact_angle());
-  const Eigen::VectorXd q = Eigen::VectorXd::Zero(n);
-  Eigen::VectorXd qd = Eigen::VectorXd::Zero(n);
-  ImpactLaw law;
-  const ImpactResult r = apply_impact(model, law, t, q, qd, ws, tip);
-  const double t2 = evaluate_energy(model, q, qd, ws).t2;
+  StraightBeamImpact s;
+  const ImpactResult r = s.apply(ImpactLaw{});
+  const double t2 = evaluate_energy(s.model, s.q, s.qd, s.ws).t2;
+  TipKinematics& tip = s.tip;
   EXPECT_NEAR(t2, 0.5 * r.impulse * r.impulse * r.effective_inverse_mass, 1e-12 * t2);
   EXPECT_NEAR(tip.gap, 0.0, 1e-15);
 }
@@ -109,19 +117,13 @@ TEST(Impact, RigidStartImpactSetsTheBeamVibrating) {
 TEST(Impact, PlasticStraightBeamImpactStopsTheTip) {
   // SPEC §10: at q = 0 the tip can only move along the beam's local y axis, so e = 0 leaves
   // V_X = V_Y = 0 (to round-off of ω(r_h + L) ≈ 0.7 m/s).
-  const Model model = make_model(PhysicalParameters{});
-  const int n = model.n;
-  Workspace ws(n);
-  TipKinematics tip(n);
-  const double t = model.time_at(model.rigid_contact_angle());
-  const Eigen::VectorXd q = Eigen::VectorXd::Zero(n);
-  Eigen::VectorXd qd = Eigen::VectorXd::Zero(n);
+  StraightBeamImpact s;
   ImpactLaw law;
   law.model = RestitutionModel::constant;
   law.constant = 0.0;
-  apply_impact(model, law, t, q, qd, ws, tip);
-  EXPECT_NEAR(tip.VX, 0.0, 1e-14);
-  EXPECT_NEAR(tip.VY, 0.0, 1e-13);
+  s.apply(law);
+  EXPECT_NEAR(s.tip.VX, 0.0, 1e-14);
+  EXPECT_NEAR(s.tip.VY, 0.0, 1e-13);
 }
 
 TEST(Impact, RecedingTipIsNotAnImpact) {

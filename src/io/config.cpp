@@ -71,6 +71,13 @@ std::string one_of(const std::string& key, const toml::node& node, std::initiali
   fail(key, node, "must be one of " + list);
 }
 
+int integer_in(const std::string& key, const toml::node& node, int64_t lo, int64_t hi) {
+  if (!node.is_integer()) fail(key, node, "must be an integer");
+  const int64_t v = *node.value<int64_t>();
+  if (v < lo || v > hi) fail(key, node, "must be in " + std::to_string(lo) + ".." + std::to_string(hi));
+  return static_cast<int>(v);
+}
+
 bool boolean(const std::string& key, const toml::node& node) {
   if (!node.is_boolean()) fail(key, node, "must be true or false");
   return *node.value<bool>();
@@ -109,10 +116,7 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
       {"beam.youngs_modulus_pa", [](Parsed& p, auto& k, auto& n) { p.config.physical.youngs_modulus_pa = positive(k, n); }},
       {"beam.modes",
        [](Parsed& p, auto& k, auto& n) {
-         if (!n.is_integer()) fail(k, n, "must be an integer");
-         const int64_t v = *n.template value<int64_t>();
-         if (v < 1 || v > kMaxModes) fail(k, n, "must be in 1.." + std::to_string(kMaxModes));
-         p.config.physical.modes = static_cast<int>(v);
+         p.config.physical.modes = integer_in(k, n, 1, kMaxModes);
          p.modes_node = &n;
        }},
       {"hub.radius_m", [](Parsed& p, auto& k, auto& n) { p.config.physical.hub_radius_m = number_in(k, n, 0.0, INFINITY, false, true); }},
@@ -171,19 +175,8 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
       {"simulation.fine_below_n", [](Parsed& p, auto& k, auto& n) { p.config.fine_below_n = number_in(k, n, 0.0, INFINITY, false, true); }},
       {"simulation.corrector_tolerance", [](Parsed& p, auto& k, auto& n) { p.config.corrector_tolerance = number_in(k, n, 0.0, 1.0, true, true); }},
       {"simulation.corrector_max_iterations",
-       [](Parsed& p, auto& k, auto& n) {
-         if (!n.is_integer()) fail(k, n, "must be an integer");
-         const int64_t v = *n.template value<int64_t>();
-         if (v < 1 || v > 10000) fail(k, n, "must be in 1..10000");
-         p.config.corrector_max_iterations = static_cast<int>(v);
-       }},
-      {"simulation.max_impacts",
-       [](Parsed& p, auto& k, auto& n) {
-         if (!n.is_integer()) fail(k, n, "must be an integer");
-         const int64_t v = *n.template value<int64_t>();
-         if (v < 1 || v > 100000000) fail(k, n, "must be in 1..100000000");
-         p.config.max_impacts = static_cast<int>(v);
-       }},
+       [](Parsed& p, auto& k, auto& n) { p.config.corrector_max_iterations = integer_in(k, n, 1, 10000); }},
+      {"simulation.max_impacts", [](Parsed& p, auto& k, auto& n) { p.config.max_impacts = integer_in(k, n, 1, 100000000); }},
       {"simulation.deflection_warning_ratio", [](Parsed& p, auto& k, auto& n) { p.config.deflection_warning_ratio = positive(k, n); }},
       {"output.interval_s", [](Parsed& p, auto& k, auto& n) { p.config.output_interval_s = number_in(k, n, 0.0, INFINITY, false, true); }},
       {"compat.thesis_forces", [](Parsed& p, auto& k, auto& n) { p.config.thesis_forces = boolean(k, n); }},
