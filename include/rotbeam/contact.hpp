@@ -52,6 +52,10 @@ double stick_speed_threshold(const Model& model);
 SlipDecision decide_slip(const Model& model, const FrictionModel& friction, const TipKinematics& tip,
                          Workspace& ws);
 
+/// The locked-tip analysis of decide_slip, whatever V_t is (used at a located V_t = 0 event).
+SlipDecision decide_slip_at_rest(const Model& model, const FrictionModel& friction, const TipKinematics& tip,
+                                 Workspace& ws);
+
 /// μ_eff, the friction coefficient applied to |λ| (μ, or μ|∇C| under thesis_forces).
 double effective_friction(const FrictionModel& friction, const TipKinematics& tip);
 

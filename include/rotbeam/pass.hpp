@@ -87,7 +87,19 @@ struct PassOptions {
   double output_interval_s = 1e-5;    // history sampling (events always recorded exactly)
   double deflection_warning_ratio = 0.1;
   int max_impacts = 10000;
+  // Adaptive scheme (SPEC §6).
+  double rtol = 1e-9;
+  double atol = 1e-12;
+  double max_step_s = 2e-5;           // upper bound on the adaptive step [s]
+  double event_tolerance_s = 1e-13;   // events located to this bracket width [s]
 };
+
+/// Runs one pass with the adaptive event-driven scheme: Dormand–Prince 5(4) with dense output
+/// (Boost.Odeint), events (C = 0 in free flight; λ = 0 and V_t = 0 in contact; the end angle)
+/// located by root finding on the dense output, projection onto C = 0 and Ċ = 0 after every contact
+/// step, and the same impact law, slip/stick analysis and Zeno handling as the thesis scheme.
+PassResult run_adaptive_pass(const Model& model, const ImpactLaw& law, const FrictionModel& friction,
+                             const InitialConditions& initial, const PassOptions& options);
 
 /// Runs one pass with the thesis's scheme (fixed-step RK5, momentum-balance impacts,
 /// predictor–corrector in contact). Never throws for numerical trouble: a failure is returned in

@@ -17,6 +17,13 @@ struct ContactLoad {
   double slip = 0;            // slip direction s_t used
 };
 
+/// Contact integrals over a step when the scheme integrates them itself (adaptive scheme).
+struct StepIntegrals {
+  double work = 0;            // ∫ q̇ᵀQ_contact dt [J]
+  double friction_work = 0;   // ∫ F_t V_t dt [J]
+  double normal_impulse = 0;  // ∫ F_n dt [N s]
+};
+
 class PassRecorder {
 public:
   PassRecorder(const Model& model, const FrictionModel& friction, const PassOptions& options, PassResult& result);
@@ -30,6 +37,9 @@ public:
   /// contact load at the new point, `load_begin` at the previous one (trapezoidal integrals).
   void accept(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Phase phase, const ContactLoad& load_begin,
               const ContactLoad& load_end, bool force_sample = false);
+  /// The same with the step's contact integrals given exactly (no trapezoidal rule).
+  void accept_integrated(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Phase phase,
+                         const ContactLoad& load_end, const StepIntegrals& integrals, bool force_sample = false);
   void impact(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd_before, const Eigen::VectorXd& qd_after,
               const ImpactResult& r);
   void contact_start(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const std::string& detail);

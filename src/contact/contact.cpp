@@ -50,6 +50,13 @@ SlipDecision decide_slip(const Model& model, const FrictionModel& friction, cons
     d.direction = tip.VY > 0 ? 1.0 : -1.0;
     return d;
   }
+  return decide_slip_at_rest(model, friction, tip, ws);
+}
+
+SlipDecision decide_slip_at_rest(const Model& model, const FrictionModel& friction, const TipKinematics& tip,
+                                 Workspace& ws) {
+  (void)model;
+  SlipDecision d;
   d.from_velocity = false;
   // Two constraints: C̈ = ∇Cᵀq̈ + γ = 0 and Ÿ = gᵀq̈ + γ_Y = 0 with M q̈ = −Ψ + λ∇C + λ_t g, g = ∂Y/∂q.
   Eigen::VectorXd& minv_grad = ws.scratch;

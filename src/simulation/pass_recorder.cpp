@@ -135,6 +135,21 @@ void PassRecorder::accept(double t, const Eigen::VectorXd& q, const Eigen::Vecto
   if (force_sample || t >= next_sample_t_) sample(t, q, qd, phase, end);
 }
 
+void PassRecorder::accept_integrated(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Phase phase,
+                                     const ContactLoad& load_end, const StepIntegrals& in, bool force_sample) {
+  PassSummary& s = result_.summary;
+  if (phase != Phase::free) {
+    s.contact_time_s += t - last_t_;
+    normal_time_integral_ += in.normal_impulse;
+    s.friction_work_j += in.friction_work;
+    work_ += in.work;
+    s.peak_normal_force_n = std::max(s.peak_normal_force_n, load_end.normal_force);
+  }
+  last_t_ = t;
+  track(t, q, qd);
+  if (force_sample || t >= next_sample_t_) sample(t, q, qd, phase, load_end);
+}
+
 void PassRecorder::impact(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd_before,
                           const Eigen::VectorXd& qd_after, const ImpactResult& r) {
   PassSummary& s = result_.summary;
