@@ -132,7 +132,7 @@ TEST(Cli, RunWritesHistoryEventsAndSummary) {
                         "energy_audit_residual", "steps", "rhs_evaluations", "wall_time_s", "scheme", "warnings",
                         "config", "contact_intervals", "failure"})
     EXPECT_TRUE(j.contains(k)) << k;
-  EXPECT_EQ(j["scheme"], "thesis");
+  EXPECT_EQ(j["scheme"], "adaptive");
   EXPECT_TRUE(j["failure"].is_null());
   EXPECT_NEAR(j["first_impact_deg"].get<double>(), -8.1096, 1e-4);
   EXPECT_GT(j["impacts"].get<int>(), 1);
@@ -162,7 +162,8 @@ TEST(Cli, RunHistoryIntervalIsConfigurable) {
 TEST(Cli, RunReportsANumericalFailureAndKeepsThePartialResult) {
   // One corrector iteration cannot meet the tolerance: a diagnosed stop with t and θ, exit code 4.
   const std::string dir = ::testing::TempDir() + "rotbeam_run_fail";
-  const CliRun r = run("run --set simulation.corrector_max_iterations=1 --set impact.plastic_below_m_s=10 -o " + dir);
+  const CliRun r = run("run --set simulation.scheme=thesis --set simulation.corrector_max_iterations=1 "
+                       "--set impact.plastic_below_m_s=10 -o " + dir);
   EXPECT_EQ(r.status, 4) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_NE(r.err.find("corrector"), std::string::npos) << r.err;

@@ -51,9 +51,7 @@ int run_pass_command(const RunOptions& o) {
   } catch (const std::exception& e) {
     throw ConfigError(std::string("-o ") + e.what());
   }
-  const Model model = make_model(config.physical);
-  const PassResult r =
-      run_thesis_pass(model, config.impact, config.friction_model(), config.initial_conditions(), config.pass_options());
+  const PassResult r = config.run_pass();
   write_pass_outputs(o.output_dir, r, config);
   if (o.json)
     std::cout << summary_json(r, config).dump(2) << "\n";

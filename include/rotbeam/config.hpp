@@ -27,9 +27,10 @@ struct Config {
   std::string start = "rigid";             // initial.start as resolved ("rigid" | "flexible")
   std::vector<double> modal_velocity;      // initial.modal_velocity [m/s], n values
   std::vector<double> modal_displacement;  // initial.modal_displacement [m], n values
-  std::string scheme = "thesis";           // simulation.scheme
+  std::string scheme = "adaptive";         // simulation.scheme
   double end_angle_deg = 90.0;             // simulation.end_angle_deg
   double rtol = 1e-9, atol = 1e-12;        // simulation.rtol / atol (adaptive scheme)
+  double max_step_s = 2e-5;                // simulation.max_step_s (adaptive scheme)
   double free_step_s = 1e-6;               // simulation.free_step_s (thesis scheme, free flight)
   double contact_step_s = 1e-7;            // simulation.contact_step_s
   double fine_contact_step_s = 1e-8;       // simulation.fine_contact_step_s
@@ -46,6 +47,8 @@ struct Config {
   InitialConditions initial_conditions() const;
   /// Options of a whole pass.
   PassOptions pass_options() const;
+  /// Runs the configured pass with the configured scheme.
+  PassResult run_pass() const;
   /// Friction as configured (surface.friction, compat.thesis_forces).
   FrictionModel friction_model() const;
   /// End angle in radians.

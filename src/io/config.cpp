@@ -156,12 +156,7 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
          p.config.modal_displacement = number_array(k, n);
          p.displacement_node = &n;
        }},
-      {"simulation.scheme",
-       [](Parsed& p, auto& k, auto& n) {
-         p.config.scheme = one_of(k, n, {"adaptive", "thesis"});
-         if (p.config.scheme == "adaptive")
-           fail(k, n, "the adaptive scheme is not available in this version; use \"thesis\"");
-       }},
+      {"simulation.scheme", [](Parsed& p, auto& k, auto& n) { p.config.scheme = one_of(k, n, {"adaptive", "thesis"}); }},
       {"simulation.end_angle_deg",
        [](Parsed& p, auto& k, auto& n) {
          p.config.end_angle_deg = number_in(k, n, -90.0, 270.0, true, false);
@@ -169,6 +164,7 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
        }},
       {"simulation.rtol", [](Parsed& p, auto& k, auto& n) { p.config.rtol = number_in(k, n, 0.0, 1.0, true, true); }},
       {"simulation.atol", [](Parsed& p, auto& k, auto& n) { p.config.atol = positive(k, n); }},
+      {"simulation.max_step_s", [](Parsed& p, auto& k, auto& n) { p.config.max_step_s = number_in(k, n, 0.0, 1e-2, true, false); }},
       {"simulation.free_step_s", [](Parsed& p, auto& k, auto& n) { p.config.free_step_s = number_in(k, n, 0.0, 1e-3, true, false); }},
       {"simulation.contact_step_s", [](Parsed& p, auto& k, auto& n) { p.config.contact_step_s = number_in(k, n, 0.0, 1e-4, true, false); }},
       {"simulation.fine_contact_step_s", [](Parsed& p, auto& k, auto& n) { p.config.fine_contact_step_s = number_in(k, n, 0.0, 1e-4, true, false); }},
@@ -329,7 +325,16 @@ PassOptions Config::pass_options() const {
   o.output_interval_s = output_interval_s;
   o.deflection_warning_ratio = deflection_warning_ratio;
   o.max_impacts = max_impacts;
+  o.rtol = rtol;
+  o.atol = atol;
+  o.max_step_s = max_step_s;
   return o;
+}
+
+PassResult Config::run_pass() const {
+  const Model model = make_model(physical);
+  if (scheme == "thesis") return run_thesis_pass(model, impact, friction_model(), initial_conditions(), pass_options());
+  return run_adaptive_pass(model, impact, friction_model(), initial_conditions(), pass_options());
 }
 
 FrictionModel Config::friction_model() const { return FrictionModel{physical.friction, thesis_forces}; }
@@ -353,6 +358,7 @@ nlohmann::json Config::to_json() const {
                      {"end_angle_deg", end_angle_deg},
                      {"rtol", rtol},
                      {"atol", atol},
+                     {"max_step_s", max_step_s},
                      {"free_step_s", free_step_s},
                      {"contact_step_s", contact_step_s},
                      {"fine_contact_step_s", fine_contact_step_s},

@@ -107,10 +107,13 @@ nlohmann::json summary_json(const PassResult& result, const Config& config) {
   j["corrector_iterations_max"] = s.corrector_iterations_max;
   j["wall_time_s"] = s.wall_time_s;
   j["scheme"] = s.scheme;
-  j["tolerances"] = {{"free_step_s", config.free_step_s},
-                     {"contact_step_s", config.contact_step_s},
-                     {"fine_contact_step_s", config.fine_contact_step_s},
-                     {"corrector_tolerance", config.corrector_tolerance}};
+  if (s.scheme == "thesis")
+    j["tolerances"] = {{"free_step_s", config.free_step_s},
+                       {"contact_step_s", config.contact_step_s},
+                       {"fine_contact_step_s", config.fine_contact_step_s},
+                       {"corrector_tolerance", config.corrector_tolerance}};
+  else
+    j["tolerances"] = {{"rtol", config.rtol}, {"atol", config.atol}, {"max_step_s", config.max_step_s}};
   j["warnings"] = s.warnings;
   nlohmann::json intervals = nlohmann::json::array();
   for (const ContactInterval& c : s.contact_intervals)

@@ -1,5 +1,8 @@
 #include "rotbeam/dynamics.hpp"
 
+#include <type_traits>
+#include <utility>
+
 namespace rotbeam {
 
 Workspace::Workspace(int size)
@@ -21,30 +24,42 @@ Workspace::Workspace(int size)
 
 namespace {
 
+// The contractions below are written once as templates on the mode count: N > 0 fixes n at compile
+// time (the loops unroll; used for n ≤ 8, the common case), N = 0 takes n from the model.
+// Packed pair index of {j, l}, j ≤ l, in row-major upper-triangle order.
+template <int N>
+inline int packed(int n, int j, int l) {
+  if (j > l) std::swap(j, l);
+  return j * n - j * (j - 1) / 2 + (l - j);
+}
+
 // u_p = a_j a_l for the packed pair p = {j, l}, doubled off the diagonal, so that
 // Σ_{j,l} T_{jl} a_j a_l = Σ_p T_p u_p for a symmetric T.
-void packed_outer(const ModalIntegrals& mi, const double* a, double* u) {
-  for (int p = 0; p < mi.pairs; ++p) {
-    const int j = mi.pair_first[p], l = mi.pair_second[p];
-    u[p] = (j == l ? 1.0 : 2.0) * a[j] * a[l];
+template <int N>
+void packed_outer(int n_runtime, const double* a, double* u) {
+  const int n = N > 0 ? N : n_runtime;
+  int p = 0;
+  for (int j = 0; j < n; ++j) {
+    u[p++] = a[j] * a[j];
+    for (int l = j + 1; l < n; ++l) u[p++] = 2.0 * a[j] * a[l];
   }
 }
 
-}  // namespace
-
-void evaluate_mass(const Model& model, const Eigen::Ref<const Eigen::VectorXd>& q, Workspace& ws) {
+template <int N>
+void mass_kernel(const Model& model, const double* qv, Workspace& ws) {
   const ModalIntegrals& mi = *model.integrals;
-  const int n = mi.n, np = mi.pairs;
-  const double* qv = q.data();
+  const int n = N > 0 ? N : mi.n;
+  const int np = n * (n + 1) / 2;
   // Z[i][p] = Σ_k q_k ∫ ISP_ik ISP_p  (the only O(n⁴) contraction).
   double* z = ws.z.data();
-  std::fill(ws.z.begin(), ws.z.end(), 0.0);
   for (int i = 0; i < n; ++i) {
     double* zi = z + static_cast<std::size_t>(i) * np;
-    for (int k = 0; k < n; ++k) {
+    const double* a = mi.isp_isp.data() + static_cast<std::size_t>(i * n) * np;
+    for (int p = 0; p < np; ++p) zi[p] = qv[0] * a[p];
+    for (int k = 1; k < n; ++k) {
       const double qk = qv[k];
-      const double* a = mi.isp_isp.data() + static_cast<std::size_t>(i * n + k) * np;
-      for (int p = 0; p < np; ++p) zi[p] += qk * a[p];
+      const double* ak = a + static_cast<std::size_t>(k) * np;
+      for (int p = 0; p < np; ++p) zi[p] += qk * ak[p];
     }
   }
   // M_ij = m δ_ij + (ρA/L) Σ_l Z[i][(j,l)] q_l   (lower triangle, mirrored).
@@ -53,7 +68,7 @@ void evaluate_mass(const Model& model, const Eigen::Ref<const Eigen::VectorXd>& 
     const double* zi = z + static_cast<std::size_t>(i) * np;
     for (int j = 0; j <= i; ++j) {
       double sum = 0.0;
-      for (int l = 0; l < n; ++l) sum += zi[mi.pair(j, l)] * qv[l];
+      for (int l = 0; l < n; ++l) sum += zi[packed<N>(n, j, l)] * qv[l];
       const double mij = c1 * sum + (i == j ? model.mass : 0.0);
       ws.mass(i, j) = mij;
       ws.mass(j, i) = mij;
@@ -61,71 +76,103 @@ void evaluate_mass(const Model& model, const Eigen::Ref<const Eigen::VectorXd>& 
   }
 }
 
-void evaluate_dynamics(const Model& model, const Eigen::Ref<const Eigen::VectorXd>& q,
-                       const Eigen::Ref<const Eigen::VectorXd>& qd, Workspace& ws) {
+template <int N>
+void force_kernel(const Model& model, const double* qv, const double* vv, Workspace& ws) {
   const ModalIntegrals& mi = *model.integrals;
-  const int n = mi.n, np = mi.pairs;
-  evaluate_mass(model, q, ws);
-  ws.mass_llt.compute(ws.mass);
-
-  const double* qv = q.data();
-  const double* vv = qd.data();
-  packed_outer(mi, qv, ws.q_pairs.data());
-  packed_outer(mi, vv, ws.v_pairs.data());
+  const int n = N > 0 ? N : mi.n;
+  const int np = n * (n + 1) / 2;
+  packed_outer<N>(n, qv, ws.q_pairs.data());
+  packed_outer<N>(n, vv, ws.v_pairs.data());
+  const double* qp = ws.q_pairs.data();
+  const double* vp = ws.v_pairs.data();
 
   // ∫ ISP q (qᵀ ISP q) and ∫ ISP q (q̇ᵀ ISP q̇) from Z.
   const double* z = ws.z.data();
+  const double c1 = model.mass_per_length / model.length;
   for (int i = 0; i < n; ++i) {
     const double* zi = z + static_cast<std::size_t>(i) * np;
     double cubic = 0.0, fore = 0.0;
     for (int p = 0; p < np; ++p) {
-      cubic += zi[p] * ws.q_pairs[p];
-      fore += zi[p] * ws.v_pairs[p];
+      cubic += zi[p] * qp[p];
+      fore += zi[p] * vp[p];
     }
     ws.isp_cubic[i] = cubic;
-    ws.foreshortening[i] = fore;
+    ws.foreshortening[i] = c1 * fore;  // D(q,q̇) q̇ = (ρA/L) ∫ ISP q (q̇ᵀ ISP q̇)
   }
-  const double c1 = model.mass_per_length / model.length;
-  ws.foreshortening *= c1;  // D(q,q̇) q̇ = (ρA/L) ∫ ISP q (q̇ᵀ ISP q̇)
 
   // 2ω G(q) q̇ with G_ij = ρA Σ_k q_k (∫ISP_ik S_j − ∫ISP_jk S_i).
-  ws.gyroscopic.setZero();
+  double* gyro = ws.gyroscopic.data();
+  for (int i = 0; i < n; ++i) gyro[i] = 0.0;
   const double* b = mi.isp_s.data();
   for (int i = 0; i < n; ++i)
     for (int k = 0; k < n; ++k) {
       const double* bik = b + static_cast<std::size_t>(i * n + k) * n;
       double forward = 0.0;
       for (int j = 0; j < n; ++j) forward += bik[j] * vv[j];
-      ws.gyroscopic[i] += qv[k] * forward;                   // Σ_kj B[i,k,j] q_k q̇_j
+      gyro[i] += qv[k] * forward;                   // Σ_kj B[i,k,j] q_k q̇_j
       const double back = vv[i] * qv[k];
-      for (int j = 0; j < n; ++j) ws.gyroscopic[j] -= back * bik[j];  // −Σ_ik B[i,k,j] q̇_i q_k
+      for (int j = 0; j < n; ++j) gyro[j] -= back * bik[j];  // −Σ_ik B[i,k,j] q̇_i q_k
     }
-  ws.gyroscopic *= 2.0 * model.omega * model.mass_per_length;
+  const double g2 = 2.0 * model.omega * model.mass_per_length;
+  for (int i = 0; i < n; ++i) gyro[i] *= g2;
 
   // K_ω q = m ω² [ (r_h/L) ∫ISP q + ∫ξ ISP q − ∫ISP q (qᵀISP q)/(2L²) − q ].
   const double L = model.length;
-  ws.centrifugal.noalias() = (model.hub_radius / L) * (mi.isp_mean * q);
-  ws.centrifugal.noalias() += mi.isp_xi * q;
-  ws.centrifugal -= ws.isp_cubic / (2.0 * L * L);
-  ws.centrifugal -= q;
-  ws.centrifugal *= model.mass * model.omega * model.omega;
+  const double rh_l = model.hub_radius / L, cw = model.mass * model.omega * model.omega;
+  const double* im = mi.isp_mean.data();  // column-major, symmetric
+  const double* ix = mi.isp_xi.data();
+  for (int i = 0; i < n; ++i) {
+    double lin = 0.0;
+    for (int j = 0; j < n; ++j) lin += (rh_l * im[j * n + i] + ix[j * n + i]) * qv[j];
+    ws.centrifugal[i] = cw * (lin - ws.isp_cubic[i] / (2.0 * L * L) - qv[i]);
+  }
 
   // K_b q = (EI/L³) [ r⁴ ⊙ q + ∫ P q (qᵀ P q)/(2L²) ].
   const double* pp = mi.p_p.data();
   for (int p = 0; p < np; ++p) {
     const double* row = pp + static_cast<std::size_t>(p) * np;
     double sum = 0.0;
-    for (int r = 0; r < np; ++r) sum += row[r] * ws.q_pairs[r];
+    for (int r = 0; r < np; ++r) sum += row[r] * qp[r];
     ws.p_contract[p] = sum;
   }
+  const double cb = model.bending_stiffness / (L * L * L);
   for (int i = 0; i < n; ++i) {
     double sum = 0.0;
-    for (int j = 0; j < n; ++j) sum += ws.p_contract[mi.pair(i, j)] * qv[j];
-    ws.bending[i] = mi.r4[i] * qv[i] + sum / (2.0 * L * L);
+    for (int j = 0; j < n; ++j) sum += ws.p_contract[packed<N>(n, i, j)] * qv[j];
+    ws.bending[i] = cb * (mi.r4[i] * qv[i] + sum / (2.0 * L * L));
+    ws.psi[i] = gyro[i] + ws.foreshortening[i] + ws.centrifugal[i] + ws.bending[i];
   }
-  ws.bending *= model.bending_stiffness / (L * L * L);
+}
 
-  ws.psi = ws.gyroscopic + ws.foreshortening + ws.centrifugal + ws.bending;
+template <class Fn>
+void dispatch(int n, Fn&& fn) {
+  switch (n) {
+    case 1: return fn(std::integral_constant<int, 1>{});
+    case 2: return fn(std::integral_constant<int, 2>{});
+    case 3: return fn(std::integral_constant<int, 3>{});
+    case 4: return fn(std::integral_constant<int, 4>{});
+    case 5: return fn(std::integral_constant<int, 5>{});
+    case 6: return fn(std::integral_constant<int, 6>{});
+    case 7: return fn(std::integral_constant<int, 7>{});
+    case 8: return fn(std::integral_constant<int, 8>{});
+    default: return fn(std::integral_constant<int, 0>{});
+  }
+}
+
+}  // namespace
+
+void evaluate_mass(const Model& model, const Eigen::Ref<const Eigen::VectorXd>& q, Workspace& ws) {
+  dispatch(model.n, [&](auto dim) { mass_kernel<decltype(dim)::value>(model, q.data(), ws); });
+}
+
+void evaluate_dynamics(const Model& model, const Eigen::Ref<const Eigen::VectorXd>& q,
+                       const Eigen::Ref<const Eigen::VectorXd>& qd, Workspace& ws) {
+  dispatch(model.n, [&](auto dim) {
+    constexpr int N = decltype(dim)::value;
+    mass_kernel<N>(model, q.data(), ws);
+    ws.mass_llt.compute(ws.mass);
+    force_kernel<N>(model, q.data(), qd.data(), ws);
+  });
 }
 
 void acceleration(const Model& model, const Eigen::Ref<const Eigen::VectorXd>& q,
