@@ -179,3 +179,20 @@ TEST(Cli, RunRejectsAnUnwritableOutputFolder) {
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_NE(r.err.find("/proc/rotbeam-cannot-write-here"), std::string::npos) << r.err;
 }
+
+TEST(Cli, ConvergePrintsItsTableAndJson) {
+  const std::string args = "converge --set simulation.end_angle_deg=-5 --rtols 1e-8,1e-10 --steps 1e-6 --modes 3";
+  const CliRun r = run(args);
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* s : {"adaptive rtol=1e-10 (reference)", "adaptive rtol=1e-08", "thesis h=1e-06/1e-07", "modes=3",
+                        "sep_deg", "impulse_mNs"})
+    EXPECT_NE(r.out.find(s), std::string::npos) << s << "\n" << r.out;
+  const CliRun j = run(args + " --json");
+  ASSERT_EQ(j.status, 0) << j.err;
+  const auto doc = nlohmann::json::parse(j.out);
+  ASSERT_EQ(doc["runs"].size(), 4u);
+  EXPECT_TRUE(doc["runs"][0]["reference"].get<bool>());
+  EXPECT_EQ(doc["runs"][0]["difference"]["normal_impulse_rel"].get<double>(), 0.0);
+  EXPECT_TRUE(doc["runs"][2]["metrics"].contains("normal_impulse_n_s"));
+  EXPECT_NE(run("converge --rtols 1e-8,abc").status, 0);
+}

@@ -11,5 +11,6 @@ using Command = std::function<int()>;
 Command add_modes_command(CLI::App& app);
 Command add_impact_command(CLI::App& app);
 Command add_run_command(CLI::App& app);
+Command add_converge_command(CLI::App& app);
 
 }  // namespace rotbeam::cli

@@ -17,9 +17,10 @@ int main(int argc, char** argv) {
   Command modes = add_modes_command(app);
   Command impact = add_impact_command(app);
   Command run = add_run_command(app);
+  Command converge = add_converge_command(app);
   if (argc > 1 && argv[1][0] != '-' && std::string(argv[1]) != "modes" && std::string(argv[1]) != "impact" &&
-      std::string(argv[1]) != "run") {
-    print_error("unknown command '" + std::string(argv[1]) + "' (commands: modes, impact, run; see rotbeam --help)");
+      std::string(argv[1]) != "run" && std::string(argv[1]) != "converge") {
+    print_error("unknown command '" + std::string(argv[1]) + "' (commands: run, converge, impact, modes; see rotbeam --help)");
     return kBadInput;
   }
   try {
@@ -38,6 +39,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("modes")) return modes();
     if (app.got_subcommand("impact")) return impact();
     if (app.got_subcommand("run")) return run();
+    if (app.got_subcommand("converge")) return converge();
   } catch (const rotbeam::ConfigError& e) {
     print_error(e.what());
     return kBadInput;

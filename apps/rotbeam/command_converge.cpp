@@ -1,0 +1,104 @@
+// `rotbeam converge`: a case over a ladder of tolerances, thesis steps and mode counts (SPEC §10).
+#include "commands.hpp"
+#include "common.hpp"
+
+#include "rotbeam/convergence.hpp"
+
+#include <cmath>
+#include <iostream>
+#include <sstream>
+
+namespace rotbeam::cli {
+
+namespace {
+
+struct ConvergeOptions {
+  CaseOptions case_options;
+  std::string rtols, steps, modes;
+  int jobs = 0;
+  bool json = false;
+};
+
+template <class T>
+std::vector<T> parse_list(const std::string& text, const std::string& option) {
+  std::vector<T> out;
+  std::stringstream ss(text);
+  for (std::string item; std::getline(ss, item, ',');) {
+    std::size_t used = 0;
+    double v = 0;
+    try {
+      v = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != item.size() || !(v > 0) || !std::isfinite(v))
+      throw ConfigError(option + " " + text + ": '" + item + "' is not a positive number");
+    if constexpr (std::is_integral_v<T>) {
+      if (v != std::floor(v) || v > kMaxModes) throw ConfigError(option + " " + text + ": '" + item + "' must be a whole number of modes up to " + std::to_string(kMaxModes));
+    }
+    out.push_back(static_cast<T>(v));
+  }
+  if (out.empty()) throw ConfigError(option + ": give a comma-separated list");
+  return out;
+}
+
+std::string cell(double v, int width, const char* format) {
+  char buf[64];
+  if (!std::isfinite(v)) std::snprintf(buf, sizeof buf, "%*s", width, "–");
+  else std::snprintf(buf, sizeof buf, format, width, v);
+  return buf;
+}
+
+int run_converge(const ConvergeOptions& o) {
+  const Config config = o.case_options.load();
+  ConvergenceLadder ladder;
+  if (!o.rtols.empty()) ladder.rtols = parse_list<double>(o.rtols, "--rtols");
+  if (!o.steps.empty()) ladder.thesis_free_steps = parse_list<double>(o.steps, "--steps");
+  if (!o.modes.empty()) ladder.modes = parse_list<int>(o.modes, "--modes");
+  if (o.jobs < 0) throw ConfigError("--jobs " + std::to_string(o.jobs) + ": must be >= 0");
+  const ConvergenceStudy study = run_convergence(config, ladder, o.jobs);
+  if (o.json) {
+    std::cout << convergence_json(study).dump(2) << "\n";
+    return kSuccess;
+  }
+  const PassSummary& ref = study.runs.front().summary;
+  std::cout << "Convergence of " << fixed(config.physical.speed_rpm, 0) << " rpm, depth "
+            << fixed(100 * config.physical.depth_fraction, 2) << " %, μ = " << config.physical.friction << ", "
+            << config.physical.modes << " modes; differences (Δ) from " << study.runs.front().label << "\n\n";
+  std::printf("%-32s %9s %9s %5s %5s %10s %11s %9s %11s %10s %10s %9s %8s\n", "run", "sep_deg", "Δsep_deg", "imp",
+              "epis", "t_cont_ms", "impulse_mNs", "Δimp_rel", "peak_Fn_N", "Δpeak_rel", "W_f_mJ", "Δcont_rel",
+              "wall_s");
+  for (const ConvergenceRun& r : study.runs) {
+    const PassSummary& s = r.summary;
+    const double dsep = s.last_separation_deg - ref.last_separation_deg;
+    auto rel = [](double a, double b) { return b == 0 ? (a == 0 ? 0.0 : NAN) : (a - b) / std::abs(b); };
+    std::printf("%-32s %s %s %5d %5d %s %s %s %s %s %s %s %s%s\n", r.label.c_str(),
+                cell(s.last_separation_deg, 9, "%*.4f").c_str(), cell(dsep, 9, "%*.1e").c_str(), s.impacts,
+                s.contact_episodes, cell(s.contact_time_s * 1e3, 10, "%*.5f").c_str(),
+                cell(s.normal_impulse_n_s * 1e3, 11, "%*.6f").c_str(),
+                cell(rel(s.normal_impulse_n_s, ref.normal_impulse_n_s), 9, "%*.1e").c_str(),
+                cell(s.peak_normal_force_n, 11, "%*.5f").c_str(),
+                cell(rel(s.peak_normal_force_n, ref.peak_normal_force_n), 10, "%*.1e").c_str(),
+                cell(s.friction_work_j * 1e3, 10, "%*.5f").c_str(),
+                cell(rel(s.contact_time_s, ref.contact_time_s), 9, "%*.1e").c_str(),
+                cell(s.wall_time_s, 8, "%*.3f").c_str(), r.failure.empty() ? "" : ("  stopped: " + r.failure).c_str());
+  }
+  return kSuccess;
+}
+
+}  // namespace
+
+Command add_converge_command(CLI::App& app) {
+  auto opts = std::make_shared<ConvergeOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "converge", "Rerun a case over tolerances, thesis step sizes and mode counts; compare with the tightest run");
+  opts->case_options.add_to(*sub);
+  sub->add_option("--rtols", opts->rtols, "Adaptive tolerances, comma-separated (default 1e-6,1e-8,1e-10,1e-12; the smallest is the reference)");
+  sub->add_option("--steps", opts->steps, "Thesis free-flight steps [s] (contact step = step/10; default 4e-6,2e-6,1e-6,5e-7)");
+  sub->add_option("--modes", opts->modes, "Mode counts (default 3,5,8,12)");
+  sub->add_option("--jobs", opts->jobs, "Threads (default: all cores)");
+  sub->add_flag("--json", opts->json, "Print the study as JSON");
+  return [opts] { return run_converge(*opts); };
+}
+
+}  // namespace rotbeam::cli

@@ -1,0 +1,143 @@
+#include "rotbeam/convergence.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <thread>
+
+namespace rotbeam {
+
+namespace {
+
+std::string label_number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
+nlohmann::json metrics(const PassSummary& s) {
+  auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  return {{"last_separation_deg", num(s.last_separation_deg)},
+          {"impacts", s.impacts},
+          {"contact_episodes", s.contact_episodes},
+          {"contact_time_s", s.contact_time_s},
+          {"normal_impulse_n_s", s.normal_impulse_n_s},
+          {"peak_normal_force_n", s.peak_normal_force_n},
+          {"friction_work_j", s.friction_work_j},
+          {"energy_audit_residual", s.energy_audit_residual},
+          {"steps", s.steps},
+          {"rhs_evaluations", s.rhs_evaluations},
+          {"wall_time_s", s.wall_time_s}};
+}
+
+double relative(double a, double ref) {
+  if (ref == 0.0) return a == 0.0 ? 0.0 : INFINITY;
+  return (a - ref) / std::abs(ref);
+}
+
+}  // namespace
+
+ConvergenceStudy run_convergence(const Config& base, const ConvergenceLadder& ladder, int jobs) {
+  std::vector<Config> configs;
+  ConvergenceStudy study;
+  const double ref_rtol = *std::min_element(ladder.rtols.begin(), ladder.rtols.end());
+  auto add = [&](Config c, ConvergenceRun r) {
+    configs.push_back(std::move(c));
+    study.runs.push_back(std::move(r));
+  };
+  {
+    Config c = base;
+    c.scheme = "adaptive";
+    c.rtol = ref_rtol;
+    ConvergenceRun r;
+    r.label = "adaptive rtol=" + label_number(ref_rtol) + " (reference)";
+    r.scheme = "adaptive";
+    r.rtol = ref_rtol;
+    r.modes = c.physical.modes;
+    r.reference = true;
+    add(c, r);
+  }
+  for (double rtol : ladder.rtols) {
+    if (rtol == ref_rtol) continue;
+    Config c = base;
+    c.scheme = "adaptive";
+    c.rtol = rtol;
+    ConvergenceRun r;
+    r.label = "adaptive rtol=" + label_number(rtol);
+    r.scheme = "adaptive";
+    r.rtol = rtol;
+    r.modes = c.physical.modes;
+    add(c, r);
+  }
+  for (double h : ladder.thesis_free_steps) {
+    Config c = base;
+    c.scheme = "thesis";
+    c.free_step_s = h;
+    c.contact_step_s = h / 10.0;
+    c.fine_contact_step_s = h / 100.0;
+    ConvergenceRun r;
+    r.label = "thesis h=" + label_number(h) + "/" + label_number(h / 10.0);
+    r.scheme = "thesis";
+    r.free_step_s = h;
+    r.contact_step_s = h / 10.0;
+    r.modes = c.physical.modes;
+    add(c, r);
+  }
+  const double modes_rtol = std::min(1e-8, 100.0 * ref_rtol);
+  for (int n : ladder.modes) {
+    Config c = base;
+    c.scheme = "adaptive";
+    c.rtol = modes_rtol;
+    c.physical.modes = n;
+    c.modal_velocity.resize(n, 0.0);
+    c.modal_displacement.resize(n, 0.0);
+    ConvergenceRun r;
+    r.label = "modes=" + std::to_string(n) + " (rtol=" + label_number(modes_rtol) + ")";
+    r.scheme = "adaptive";
+    r.rtol = modes_rtol;
+    r.modes = n;
+    add(c, r);
+  }
+  for (Config& c : configs) c.output_interval_s = 1e30;  // only the summary is needed
+
+  const int threads = jobs > 0 ? jobs : std::max(1u, std::thread::hardware_concurrency());
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    for (std::size_t i; (i = next.fetch_add(1)) < configs.size();) {
+      const PassResult result = configs[i].run_pass();
+      study.runs[i].summary = result.summary;
+      if (result.failure) study.runs[i].failure = result.failure->kind + ": " + result.failure->message;
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
+  for (std::thread& t : pool) t.join();
+  return study;
+}
+
+nlohmann::json convergence_json(const ConvergenceStudy& study) {
+  const PassSummary& ref = study.runs.front().summary;
+  nlohmann::json runs = nlohmann::json::array();
+  for (const ConvergenceRun& r : study.runs) {
+    nlohmann::json j = {{"label", r.label}, {"scheme", r.scheme}, {"modes", r.modes}, {"reference", r.reference}};
+    if (r.scheme == "adaptive") j["rtol"] = r.rtol;
+    else j["free_step_s"] = r.free_step_s, j["contact_step_s"] = r.contact_step_s;
+    j["metrics"] = metrics(r.summary);
+    j["difference"] = {
+        {"last_separation_deg", std::isfinite(r.summary.last_separation_deg - ref.last_separation_deg)
+                                    ? nlohmann::json(r.summary.last_separation_deg - ref.last_separation_deg)
+                                    : nlohmann::json(nullptr)},
+        {"impacts", r.summary.impacts - ref.impacts},
+        {"contact_episodes", r.summary.contact_episodes - ref.contact_episodes},
+        {"contact_time_rel", relative(r.summary.contact_time_s, ref.contact_time_s)},
+        {"normal_impulse_rel", relative(r.summary.normal_impulse_n_s, ref.normal_impulse_n_s)},
+        {"peak_normal_force_rel", relative(r.summary.peak_normal_force_n, ref.peak_normal_force_n)},
+        {"friction_work_rel", relative(r.summary.friction_work_j, ref.friction_work_j)}};
+    j["failure"] = r.failure.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.failure);
+    runs.push_back(j);
+  }
+  return {{"reference", study.runs.front().label}, {"runs", runs}};
+}
+
+}  // namespace rotbeam
