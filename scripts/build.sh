@@ -2,6 +2,9 @@
 # Configures and builds rotbeam (Release) in ./build. Extra arguments go to CMake's configure step.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "$@" > build.log 2>&1 || { cat build.log; exit 1; }
+# Debian's python3-* packages belong to /usr/bin/python3; build the Python module against it.
+python_args=()
+if [ -x /usr/bin/python3 ]; then python_args=(-DPython3_EXECUTABLE=/usr/bin/python3); fi
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${python_args[@]}" "$@" > build.log 2>&1 || { cat build.log; exit 1; }
 cmake --build build -j "$(nproc)" >> build.log 2>&1 || { tail -n 60 build.log; exit 1; }
 rm -f build.log

@@ -2,7 +2,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 
-#include "rotbeam/first_impact.hpp"
+#include "rotbeam/impact_output.hpp"
 
 #include <cmath>
 #include <iostream>
@@ -18,9 +18,7 @@ struct ImpactOptions {
 
 int run_impact(const ImpactOptions& o) {
   const Config config = o.case_options.load();
-  const Model model = make_model(config.physical);
-  const FirstImpactResult r =
-      first_impact(model, config.impact, config.initial_conditions(), config.end_angle_rad(), config.free_step_s);
+  const FirstImpactResult r = run_first_impact(config);
   if (!r.found) {
     print_error("no impact: the tip stays clear of the surface up to the end angle " +
                 fixed(config.end_angle_deg, 3) + " deg (closest gap " + std::to_string(r.min_gap) + " m)");
@@ -29,22 +27,7 @@ int run_impact(const ImpactOptions& o) {
   const double theta_deg = r.theta * 180.0 / M_PI;
   const ImpactResult& im = r.impact;
   if (o.json) {
-    nlohmann::json j;
-    j["t_s"] = r.t;
-    j["theta_deg"] = theta_deg;
-    j["x_tip_m"] = r.x_tip;
-    j["y_tip_m"] = r.y_tip;
-    j["vx_before_m_s"] = im.vx_before;
-    j["vx_after_m_s"] = im.vx_after;
-    j["delta_vx_m_s"] = im.vx_before - im.vx_after;
-    j["restitution"] = -im.vx_after / im.vx_before;
-    j["vy_before_m_s"] = im.vy_before;
-    j["vy_after_m_s"] = im.vy_after;
-    j["impulse_n_s"] = im.impulse;
-    j["energy_loss_j"] = im.relative_energy_loss;
-    j["steps"] = r.steps;
-    j["rhs_evaluations"] = r.rhs_evaluations;
-    j["config"] = config.to_json();
+    const nlohmann::json j = impact_json(r, config);
     std::cout << j.dump(2) << "\n";
     return kSuccess;
   }

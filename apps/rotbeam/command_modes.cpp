@@ -63,9 +63,7 @@ int run_modes(const ModesOptions& o) {
   if (!o.speeds.empty()) {
     speeds = parse_speeds(o.speeds);
   } else {
-    speeds = {0.0, 550.0, 1000.0, 2000.0, 3000.0, config.physical.speed_rpm};
-    std::sort(speeds.begin(), speeds.end());
-    speeds.erase(std::unique(speeds.begin(), speeds.end()), speeds.end());
+    speeds = default_mode_speeds_rpm(config.physical.speed_rpm);
   }
   const Eigen::MatrixXd f = frequencies_versus_speed(config.physical, speeds);
   const int n = config.physical.modes;

@@ -19,6 +19,9 @@ struct ModalAnalysis {
 /// Modes of `model` (its own ω).
 ModalAnalysis modal_analysis(const Model& model);
 
+/// The default speeds of `rotbeam modes` [rpm]: 0, the Table 5-2 speeds and the case's own, ascending.
+std::vector<double> default_mode_speeds_rpm(double case_speed_rpm);
+
 /// Modes at each speed [rpm] for the beam of `base` (rows: speeds, columns: modes) [Hz].
 Eigen::MatrixXd frequencies_versus_speed(const PhysicalParameters& base, const std::vector<double>& speeds_rpm);
 

@@ -3,6 +3,7 @@
 #include "rotbeam/dynamics.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -19,6 +20,13 @@ ModalAnalysis modal_analysis(const Model& model) {
   }
   out.shapes = solver.eigenvectors();
   return out;
+}
+
+std::vector<double> default_mode_speeds_rpm(double case_speed_rpm) {
+  std::vector<double> speeds = {0.0, 550.0, 1000.0, 2000.0, 3000.0, case_speed_rpm};
+  std::sort(speeds.begin(), speeds.end());
+  speeds.erase(std::unique(speeds.begin(), speeds.end()), speeds.end());
+  return speeds;
 }
 
 Eigen::MatrixXd frequencies_versus_speed(const PhysicalParameters& base, const std::vector<double>& speeds_rpm) {

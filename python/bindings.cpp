@@ -1,0 +1,142 @@
+// rotbeam._core: the C++ library's jobs for Python, with the GIL released while they compute.
+// Configuration errors raise rotbeam._core.ConfigError (a ValueError) with the CLI's message.
+#include "rotbeam/config.hpp"
+#include "rotbeam/impact_output.hpp"
+#include "rotbeam/modal_analysis.hpp"
+#include "rotbeam/pass_output.hpp"
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace py = pybind11;
+using namespace rotbeam;
+
+namespace {
+
+py::object from_json(const nlohmann::json& j) {
+  return py::module_::import("json").attr("loads")(j.dump());
+}
+
+Config load(const std::optional<std::string>& path, const std::vector<std::string>& overrides) {
+  return load_config(path, overrides);
+}
+
+py::dict history_arrays(const PassResult& r, int n) {
+  const std::size_t rows = r.history.size();
+  auto column = [&](auto get) {
+    py::array_t<double> a(static_cast<py::ssize_t>(rows));
+    auto m = a.mutable_unchecked<1>();
+    for (std::size_t i = 0; i < rows; ++i) m(static_cast<py::ssize_t>(i)) = get(r.history[i]);
+    return a;
+  };
+  py::dict h;
+  h["t_s"] = column([](const HistoryRow& x) { return x.t; });
+  h["theta_deg"] = column([](const HistoryRow& x) { return x.theta * 180.0 / M_PI; });
+  py::list phase;
+  for (const HistoryRow& x : r.history) phase.append(phase_name(x.phase));
+  h["phase"] = py::module_::import("numpy").attr("array")(phase);
+  h["x_tip_m"] = column([](const HistoryRow& x) { return x.x_tip; });
+  h["y_tip_m"] = column([](const HistoryRow& x) { return x.y_tip; });
+  h["gap_m"] = column([](const HistoryRow& x) { return x.gap; });
+  h["vx_m_s"] = column([](const HistoryRow& x) { return x.vx; });
+  h["vy_m_s"] = column([](const HistoryRow& x) { return x.vy; });
+  h["normal_force_n"] = column([](const HistoryRow& x) { return x.normal_force; });
+  h["friction_force_n"] = column([](const HistoryRow& x) { return x.friction_force; });
+  h["lambda_n"] = column([](const HistoryRow& x) { return x.lambda; });
+  for (int i = 0; i < n; ++i)
+    h[py::str("q" + std::to_string(i + 1) + "_m")] = column([i](const HistoryRow& x) { return x.q[i]; });
+  for (int i = 0; i < n; ++i)
+    h[py::str("qd" + std::to_string(i + 1) + "_m_s")] = column([i](const HistoryRow& x) { return x.qd[i]; });
+  h["jacobi_j"] = column([](const HistoryRow& x) { return x.jacobi; });
+  h["hub_torque_n_m"] = column([](const HistoryRow& x) { return x.hub_torque; });
+  return h;
+}
+
+py::list event_dicts(const PassResult& r) {
+  py::list events;
+  const py::object nan = py::float_(NAN);
+  for (const PassEvent& e : r.events) {
+    py::dict d;
+    d["t_s"] = e.t;
+    d["theta_deg"] = e.theta * 180.0 / M_PI;
+    d["kind"] = e.kind;
+    d["y_tip_m"] = e.y_tip;
+    d["vx_before_m_s"] = e.vx_before;
+    d["vx_after_m_s"] = e.vx_after;
+    d["restitution"] = e.restitution;
+    d["impulse_n_s"] = e.impulse;
+    d["detail"] = e.detail;
+    events.append(d);
+  }
+  return events;
+}
+
+py::tuple run(const std::optional<std::string>& path, const std::vector<std::string>& overrides) {
+  const Config config = load(path, overrides);
+  PassResult result;
+  {
+    py::gil_scoped_release release;
+    result = config.run_pass();
+  }
+  const nlohmann::json summary = summary_json(result, config);
+  return py::make_tuple(from_json(summary), history_arrays(result, config.physical.modes), event_dicts(result));
+}
+
+py::object impact(const std::optional<std::string>& path, const std::vector<std::string>& overrides) {
+  const Config config = load(path, overrides);
+  FirstImpactResult r;
+  {
+    py::gil_scoped_release release;
+    r = run_first_impact(config);
+  }
+  if (!r.found) return py::none();
+  return from_json(impact_json(r, config));
+}
+
+py::tuple modes(const std::optional<std::string>& path, const std::vector<std::string>& overrides,
+                const std::vector<double>& requested) {
+  const Config config = load(path, overrides);
+  const std::vector<double> speeds_rpm =
+      requested.empty() ? default_mode_speeds_rpm(config.physical.speed_rpm) : requested;
+  for (double s : speeds_rpm)
+    if (!(s >= 0.0) || !std::isfinite(s)) throw ConfigError("speeds_rpm: " + std::to_string(s) + " must be >= 0");
+  Eigen::MatrixXd f;
+  {
+    py::gil_scoped_release release;
+    f = frequencies_versus_speed(config.physical, speeds_rpm);
+  }
+  py::array_t<double> freq({static_cast<py::ssize_t>(f.rows()), static_cast<py::ssize_t>(f.cols())});
+  auto m = freq.mutable_unchecked<2>();
+  for (Eigen::Index i = 0; i < f.rows(); ++i)
+    for (Eigen::Index k = 0; k < f.cols(); ++k) m(i, k) = f(i, k);
+  py::array_t<double> speeds(static_cast<py::ssize_t>(speeds_rpm.size()), speeds_rpm.data());
+  return py::make_tuple(speeds, freq);
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "rotbeam's C++ core: whole passes, first impacts and modal analysis of a spinning filament";
+  static py::exception<ConfigError> config_error(m, "ConfigError", PyExc_ValueError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const ConfigError& e) {
+      PyErr_SetString(config_error.ptr(), e.what());
+    } catch (const std::invalid_argument& e) {
+      PyErr_SetString(config_error.ptr(), e.what());
+    }
+  });
+  m.def("run", &run, py::arg("path"), py::arg("overrides"),
+        "A whole pass: (summary dict, history dict of arrays, list of event dicts).");
+  m.def("impact", &impact, py::arg("path"), py::arg("overrides"),
+        "The first impact as a dict (the fields of `rotbeam impact --json`), or None without impact.");
+  m.def("modes", &modes, py::arg("path"), py::arg("overrides"), py::arg("speeds_rpm"),
+        "Natural frequencies: (speeds_rpm array, frequencies_hz 2-D array); [] means the default speeds.");
+  m.def("config_keys", &config_keys, "Every configuration key, 'section.key'.");
+}

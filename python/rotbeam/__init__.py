@@ -1,0 +1,118 @@
+"""rotbeam from Python: a flexible filament on a spinning hub whose tip strikes and rubs a surface.
+
+    import rotbeam
+    r = rotbeam.run()                                   # the thesis's base case, adaptive scheme
+    r = rotbeam.run("case.toml", {"hub.speed_rpm": 3000})
+    r = rotbeam.run({"hub": {"speed_rpm": 3000}, "surface": {"friction": 0.1}})
+    r.summary["last_separation_deg"], r.history["normal_force_n"], r.events[0]["kind"]
+    rotbeam.impact(overrides={"initial.modal_velocity": [2, 0, 0, 0, 0]})["vx_before_m_s"]
+    rotbeam.modes(speeds_rpm=[0, 1000, 3000])["frequencies_hz"]
+
+`config` is a TOML file's path, a dict shaped like the TOML file ({"section": {"key": value}}), or
+None for the defaults; `overrides` maps dotted keys ("section.key") to values, applied after it,
+exactly like the command line's --set. Keys, defaults and units: docs/configuration.md. Bad input
+raises rotbeam.ConfigError (a ValueError) with the command line's one-line message. The C++ work
+runs with the GIL released, so threads can run cases concurrently.
+"""
+
+import math
+import os
+
+from ._core import ConfigError, config_keys
+from . import _core
+
+__all__ = ["run", "impact", "modes", "Result", "ConfigError", "config_keys"]
+
+
+def _toml_value(value, where):
+    """A TOML literal for a Python value (exact for floats: repr round-trips)."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if hasattr(value, "item") and not isinstance(value, (list, tuple)) and getattr(value, "ndim", 0) == 0:
+        value = value.item()  # numpy scalar
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        if math.isnan(value):
+            return "nan"
+        if math.isinf(value):
+            return "inf" if value > 0 else "-inf"
+        return repr(value)
+    if isinstance(value, str):
+        escaped = value.replace("\\", "\\\\").replace('"', '\\"')
+        return '"' + escaped + '"'
+    if hasattr(value, "tolist"):
+        value = value.tolist()
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_toml_value(v, where) for v in value) + "]"
+    raise ConfigError(f"{where} = {value!r}: a {type(value).__name__} is not a configuration value")
+
+
+def _arguments(config, overrides):
+    path = None
+    sets = []
+    if config is None:
+        pass
+    elif isinstance(config, (str, os.PathLike)):
+        path = os.fspath(config)
+    elif isinstance(config, dict):
+        for section, table in config.items():
+            if not isinstance(table, dict):
+                raise ConfigError(f"{section} = {table!r}: expected a table of keys, e.g. {{'{section}': {{'key': value}}}}")
+            for key, value in table.items():
+                sets.append(f"{section}.{key}={_toml_value(value, f'{section}.{key}')}")
+    else:
+        raise TypeError(f"config must be a path, a dict or None, not {type(config).__name__}")
+    if overrides:
+        if not isinstance(overrides, dict):
+            raise TypeError(f"overrides must be a dict of dotted keys, not {type(overrides).__name__}")
+        for key, value in overrides.items():
+            sets.append(f"{key}={_toml_value(value, key)}")
+    return path, sets
+
+
+class Result:
+    """A whole pass: `summary` (the keys of summary.json), `history` (numpy arrays by the column
+    names of history.csv), `events` (dicts with the columns of events.csv)."""
+
+    def __init__(self, summary, history, events):
+        self.summary = summary
+        self.history = history
+        self.events = events
+
+    @property
+    def failure(self):
+        """None, or {kind, t_s, theta_deg, message} when the pass stopped on a diagnosed failure."""
+        return self.summary.get("failure")
+
+    def __repr__(self):
+        s = self.summary
+        return (f"<rotbeam.Result {s['scheme']}: {s['impacts']} impacts, {s['contact_episodes']} contact episodes, "
+                f"last separation {s['last_separation_deg']} deg, {len(self.history['t_s'])} history rows"
+                f"{', failure: ' + s['failure']['kind'] if s.get('failure') else ''}>")
+
+
+def run(config=None, overrides=None):
+    """A whole pass (`rotbeam run`). Returns a Result; a diagnosed numerical failure is reported in
+    Result.failure with everything computed up to it."""
+    path, sets = _arguments(config, overrides)
+    summary, history, events = _core.run(path, sets)
+    return Result(summary, history, events)
+
+
+def impact(config=None, overrides=None):
+    """The first impact (`rotbeam impact --json`) as a dict, or None if the tip never reaches the
+    surface before the end angle."""
+    path, sets = _arguments(config, overrides)
+    return _core.impact(path, sets)
+
+
+def modes(config=None, overrides=None, speeds_rpm=None):
+    """Natural frequencies versus hub speed (`rotbeam modes --json`):
+    {"speeds_rpm": array (S,), "frequencies_hz": array (S, n)}. Default speeds: 0, the Table 5-2
+    speeds and the case's own."""
+    path, sets = _arguments(config, overrides)
+    speeds, freq = _core.modes(path, sets, [] if speeds_rpm is None else [float(s) for s in speeds_rpm])
+    return {"speeds_rpm": speeds, "frequencies_hz": freq}

@@ -1,0 +1,120 @@
+"""The Python module against the command line: same numbers to the last digit, same errors,
+and thread safety. Run by ctest with PYTHONPATH=<build>/python and ROTBEAM_CLI=<rotbeam binary>."""
+
+import concurrent.futures
+import csv
+import json
+import math
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import rotbeam
+
+CLI = os.environ.get("ROTBEAM_CLI", "rotbeam")
+OVERRIDES = {"hub.speed_rpm": 3000, "surface.friction": 0.3, "output.interval_s": 1e-4}
+
+
+def cli(*args):
+    done = subprocess.run([CLI, *args], capture_output=True, text=True)
+    return done.returncode, done.stdout, done.stderr
+
+
+def sets(overrides):
+    out = []
+    for key, value in overrides.items():
+        out += ["--set", f"{key}={value!r}" if isinstance(value, float) else f"{key}={value}"]
+    return out
+
+
+def without_wall_time(summary):
+    return {k: v for k, v in summary.items() if k != "wall_time_s"}
+
+
+def test_run_equals_the_cli_to_the_last_digit(tmp_path):
+    result = rotbeam.run(overrides=OVERRIDES)
+    code, out, err = cli("run", *sets(OVERRIDES), "-o", str(tmp_path), "--json")
+    assert code == 0, err
+    assert without_wall_time(result.summary) == without_wall_time(json.loads(out))
+    with open(tmp_path / "history.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    assert len(rows) == len(result.history["t_s"])
+    for name, column in result.history.items():
+        if name == "phase":
+            assert list(column) == [r["phase"] for r in rows]
+        else:
+            # %.17g in the CSV round-trips a double exactly.
+            assert np.array_equal(column, np.array([float(r[name]) for r in rows])), name
+    with open(tmp_path / "events.csv", newline="") as f:
+        events = list(csv.DictReader(f))
+    assert [e["kind"] for e in result.events] == [e["kind"] for e in events]
+    for mine, theirs in zip(result.events, events):
+        assert mine["t_s"] == float(theirs["t_s"])
+        if not math.isnan(mine["restitution"]):
+            assert mine["restitution"] == float(theirs["restitution"])
+
+
+def test_impact_and_modes_equal_the_cli():
+    overrides = {"initial.modal_velocity": [2, 0, 0, 0, 0], "hub.speed_rpm": 3000}
+    mine = rotbeam.impact(overrides=overrides)
+    code, out, err = cli("impact", "--set", "initial.modal_velocity=[2,0,0,0,0]", "--set", "hub.speed_rpm=3000", "--json")
+    assert code == 0, err
+    assert mine == json.loads(out)
+    assert round(mine["vx_before_m_s"], 4) == 5.0358  # thesis Table 5-3
+    m = rotbeam.modes(speeds_rpm=[0, 1500, 3000])
+    code, out, err = cli("modes", "--speeds-rpm", "0:3000:3", "--json")
+    assert code == 0, err
+    theirs = json.loads(out)
+    assert m["speeds_rpm"].tolist() == theirs["speeds_rpm"]
+    assert m["frequencies_hz"].tolist() == theirs["frequencies_hz"]
+    assert rotbeam.modes()["speeds_rpm"].tolist() == [0, 550, 1000, 2000, 3000]
+
+
+def test_config_as_dict_path_or_overrides_agree(tmp_path):
+    case = tmp_path / "case.toml"
+    case.write_text('[hub]\nspeed_rpm = 3000\n[surface]\nfriction = 0.3\n[output]\ninterval_s = 1e-4\n')
+    a = rotbeam.run(str(case))
+    b = rotbeam.run({"hub": {"speed_rpm": 3000}, "surface": {"friction": 0.3}, "output": {"interval_s": 1e-4}})
+    c = rotbeam.run(overrides=OVERRIDES)
+    assert without_wall_time(a.summary) == without_wall_time(b.summary) == without_wall_time(c.summary)
+    assert np.array_equal(a.history["normal_force_n"], c.history["normal_force_n"])
+
+
+@pytest.mark.parametrize(
+    "config, overrides, message",
+    [
+        (None, {"surface.depth_fraction": -0.1}, "surface.depth_fraction = -0.1"),
+        (None, {"hub.sped_rpm": 3}, "hub.speed_rpm"),
+        (None, {"beam.modes": 2.5}, "beam.modes"),
+        (None, {"initial.modal_velocity": [1, 2]}, "initial.modal_velocity"),
+        ({"hub": 3}, None, "hub = 3"),
+        ("/nonexistent/case.toml", None, "/nonexistent/case.toml"),
+        (None, {"impact.restitution": float("nan")}, "impact.restitution"),
+    ],
+)
+def test_bad_input_raises_with_the_cli_message(config, overrides, message):
+    with pytest.raises(rotbeam.ConfigError) as info:
+        rotbeam.run(config, overrides)
+    assert message in str(info.value)
+    assert isinstance(info.value, ValueError)
+
+
+def test_a_numerical_failure_is_reported_not_raised():
+    r = rotbeam.run(overrides={"simulation.scheme": "thesis", "simulation.corrector_max_iterations": 1,
+                               "impact.plastic_below_m_s": 10.0})
+    assert r.failure is not None and r.failure["kind"] == "corrector"
+    assert len(r.history["t_s"]) > 0
+
+
+def test_concurrent_runs_equal_sequential_runs():
+    speeds = [550, 1000, 2000, 3000]
+    cases = [{"hub.speed_rpm": s, "output.interval_s": 1e-4} for s in speeds]
+    sequential = [rotbeam.run(overrides=c) for c in cases]
+    with concurrent.futures.ThreadPoolExecutor(max_workers=4) as pool:
+        concurrent_results = list(pool.map(lambda c: rotbeam.run(overrides=c), cases))
+    for a, b in zip(sequential, concurrent_results):
+        assert without_wall_time(a.summary) == without_wall_time(b.summary)
+        for name in a.history:
+            assert np.array_equal(a.history[name], b.history[name]), name
