@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 #include <sys/wait.h>
+#include <unistd.h>
 
 namespace {
 struct CliRun {
@@ -14,7 +15,10 @@ struct CliRun {
 };
 
 CliRun run(const std::string& args) {
-  const std::string err_file = ::testing::TempDir() + "rotbeam_cli_stderr.txt";
+  // One file per process and call: ctest runs the cases of this file in parallel processes.
+  static int calls = 0;
+  const std::string err_file = ::testing::TempDir() + "rotbeam_cli_stderr_" + std::to_string(getpid()) + "_" +
+                               std::to_string(++calls) + ".txt";
   const std::string cmd = std::string(ROTBEAM_CLI) + " " + args + " 2>" + err_file;
   CliRun r{};
   FILE* pipe = popen(cmd.c_str(), "r");
@@ -26,6 +30,7 @@ CliRun run(const std::string& args) {
     while (std::size_t got = fread(buf.data(), 1, buf.size(), f)) r.err.append(buf.data(), got);
     fclose(f);
   }
+  std::remove(err_file.c_str());
   return r;
 }
 }  // namespace
@@ -65,7 +70,7 @@ TEST(Cli, ModesDefaultTableAndCsv) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("f5_hz"), std::string::npos);
   EXPECT_NE(r.out.find("3000.0"), std::string::npos);
-  const std::string csv = ::testing::TempDir() + "rotbeam_modes.csv";
+  const std::string csv = ::testing::TempDir() + "rotbeam_modes_" + std::to_string(getpid()) + ".csv";
   ASSERT_EQ(run("modes --speeds-rpm 550 --csv " + csv).status, 0);
   FILE* f = fopen(csv.c_str(), "r");
   ASSERT_NE(f, nullptr);
@@ -121,7 +126,7 @@ std::string slurp(const std::string& path) {
 }  // namespace
 
 TEST(Cli, RunWritesHistoryEventsAndSummary) {
-  const std::string dir = ::testing::TempDir() + "rotbeam_run_base";
+  const std::string dir = ::testing::TempDir() + "rotbeam_run_base_" + std::to_string(getpid());
   const CliRun r = run("run -o " + dir);
   ASSERT_EQ(r.status, 0) << r.err;
   for (const char* line : {"impacts", "contact episodes", "contact span", "peak normal force", "normal impulse"})
@@ -151,7 +156,8 @@ TEST(Cli, RunWritesHistoryEventsAndSummary) {
 }
 
 TEST(Cli, RunHistoryIntervalIsConfigurable) {
-  const std::string a = ::testing::TempDir() + "rotbeam_run_i1", b = ::testing::TempDir() + "rotbeam_run_i2";
+  const std::string a = ::testing::TempDir() + "rotbeam_run_i1_" + std::to_string(getpid()),
+                    b = ::testing::TempDir() + "rotbeam_run_i2_" + std::to_string(getpid());
   ASSERT_EQ(run("run --set output.interval_s=1e-4 -o " + a).status, 0);
   ASSERT_EQ(run("run --set output.interval_s=1e-5 -o " + b).status, 0);
   const auto lines = [](const std::string& s) { return std::count(s.begin(), s.end(), '\n'); };
@@ -161,7 +167,7 @@ TEST(Cli, RunHistoryIntervalIsConfigurable) {
 
 TEST(Cli, RunReportsANumericalFailureAndKeepsThePartialResult) {
   // One corrector iteration cannot meet the tolerance: a diagnosed stop with t and θ, exit code 4.
-  const std::string dir = ::testing::TempDir() + "rotbeam_run_fail";
+  const std::string dir = ::testing::TempDir() + "rotbeam_run_fail_" + std::to_string(getpid());
   const CliRun r = run("run --set simulation.scheme=thesis --set simulation.corrector_max_iterations=1 "
                        "--set impact.plastic_below_m_s=10 -o " + dir);
   EXPECT_EQ(r.status, 4) << r.err;
