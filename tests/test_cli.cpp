@@ -166,11 +166,11 @@ TEST(Cli, RunHistoryIntervalIsConfigurable) {
 }
 
 TEST(Cli, RunReportsANumericalFailureAndKeepsThePartialResult) {
-  // One corrector iteration cannot meet the tolerance: a diagnosed stop with t and θ, exit code 4.
+  // One corrector iteration cannot meet the tolerance: a diagnosed stop with t and θ, exit code 6.
   const std::string dir = ::testing::TempDir() + "rotbeam_run_fail_" + std::to_string(getpid());
   const CliRun r = run("run --set simulation.scheme=thesis --set simulation.corrector_max_iterations=1 "
                        "--set impact.plastic_below_m_s=10 -o " + dir);
-  EXPECT_EQ(r.status, 4) << r.err;
+  EXPECT_EQ(r.status, 6) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_NE(r.err.find("corrector"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("θ = "), std::string::npos) << r.err;

@@ -51,6 +51,7 @@ int run_pass_command(const RunOptions& o) {
   } catch (const std::exception& e) {
     throw ConfigError(std::string("-o ") + e.what());
   }
+  install_interrupt_handlers();
   const PassResult r = config.run_pass();
   write_pass_outputs(o.output_dir, r, config);
   if (o.json)
@@ -58,10 +59,10 @@ int run_pass_command(const RunOptions& o) {
   else
     print_summary(config, r, o.output_dir);
   if (r.failure) {
-    print_error("numerical failure (" + r.failure->kind + ") at t = " + std::to_string(r.failure->t) +
+ print_error(std::string(r.failure->kind == "interrupted" ? "interrupted" : "numerical failure") + " (" + r.failure->kind + ") at t = " + std::to_string(r.failure->t) +
                 " s, θ = " + fixed(r.failure->theta * 180.0 / M_PI, 4) + " deg: " + r.failure->message +
                 "; results up to there are in " + o.output_dir);
-    return kNumericalFailure;
+    return exit_code_for_failure(r.failure->kind);
   }
   return kSuccess;
 }

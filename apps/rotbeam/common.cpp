@@ -1,5 +1,8 @@
 #include "common.hpp"
 
+#include "rotbeam/pass.hpp"
+
+#include <csignal>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -20,6 +23,30 @@ void print_error(const std::string& message) {
   for (char& c : one_line)
     if (c == '\n') c = ' ';
   std::cerr << "rotbeam: error: " << one_line << std::endl;
+}
+
+int exit_code_for_failure(const std::string& kind) {
+  if (kind == "painleve") return kPainleve;
+  if (kind == "stick") return kStick;
+  if (kind == "corrector") return kCorrectorNotConverged;
+  if (kind == "step_underflow") return kStepUnderflow;
+  if (kind == "non_finite") return kNonFinite;
+  if (kind == "validity") return kValidity;
+  if (kind == "impacts" || kind == "chatter") return kImpactsAccumulate;
+  if (kind == "interrupted") return kInterrupted;
+  return kRuntimeFailure;
+}
+
+namespace {
+extern "C" void on_interrupt(int signal) {
+  rotbeam::request_interrupt();
+  std::signal(signal, SIG_DFL);  // a second signal ends the process at once
+}
+}  // namespace
+
+void install_interrupt_handlers() {
+  std::signal(SIGINT, on_interrupt);
+  std::signal(SIGTERM, on_interrupt);
 }
 
 std::string fixed(double v, int decimals) {

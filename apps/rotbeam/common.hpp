@@ -16,8 +16,22 @@ enum ExitCode : int {
   kRuntimeFailure = 1,  // I/O failure or an unexpected internal error
   kBadInput = 2,        // command line or configuration rejected
   kNoImpact = 3,        // `rotbeam impact`: the tip never reached the surface before the end angle
-  kNumericalFailure = 4,// a pass stopped on a diagnosed numerical failure (partial results written)
+  // A pass stopped on a diagnosed numerical failure; the partial results are written (docs/cli.md).
+  kPainleve = 4,
+  kStick = 5,
+  kCorrectorNotConverged = 6,
+  kStepUnderflow = 7,
+  kNonFinite = 8,
+  kValidity = 9,
+  kImpactsAccumulate = 10,  // also `chatter`
+  kInterrupted = 130,       // SIGINT/SIGTERM: stopped cleanly, partial results written
 };
+
+/// The exit code of a numerical failure kind (NumericalFailure::kind).
+int exit_code_for_failure(const std::string& kind);
+
+/// Installs SIGINT/SIGTERM handlers that ask the running pass to stop (a second signal kills).
+void install_interrupt_handlers();
 
 /// The CONFIG positional and the repeatable --set option of a case-based subcommand.
 struct CaseOptions {

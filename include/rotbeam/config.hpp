@@ -39,6 +39,7 @@ struct Config {
   int corrector_max_iterations = 50;       // simulation.corrector_max_iterations
   int max_impacts = 10000;                 // simulation.max_impacts
   double deflection_warning_ratio = 0.1;   // simulation.deflection_warning_ratio
+  bool deflection_limit_is_error = false;  // simulation.deflection_limit_is_error
   double output_interval_s = 1e-5;         // output.interval_s
   bool thesis_forces = false;              // compat.thesis_forces
   bool thesis_dcdt = false;                // compat.thesis_dcdt

@@ -61,8 +61,10 @@ struct PassSummary {
 };
 
 /// A numerical breakdown: what, where and the quantities involved. The partial result is kept.
+/// Kinds: painleve, stick, corrector, step_underflow, non_finite, validity, impacts, chatter,
+/// initial_state, interrupted.
 struct NumericalFailure {
-  std::string kind;  // painleve, stick, corrector, impacts, non_finite
+  std::string kind;
   double t = 0, theta = 0;
   std::string message;
 };
@@ -87,12 +89,20 @@ struct PassOptions {
   double output_interval_s = 1e-5;    // history sampling (events always recorded exactly)
   double deflection_warning_ratio = 0.1;
   int max_impacts = 10000;
+  bool deflection_limit_is_error = false;  // stop with a `validity` failure past the warning ratio
   // Adaptive scheme (SPEC §6).
   double rtol = 1e-9;
   double atol = 1e-12;
   double max_step_s = 2e-5;           // upper bound on the adaptive step [s]
   double event_tolerance_s = 1e-13;   // events located to this bracket width [s]
 };
+
+/// Asks every running pass to stop at its next step with an `interrupted` failure (async-signal-safe:
+/// sets an atomic flag; used by the command line's SIGINT/SIGTERM handler).
+void request_interrupt() noexcept;
+/// Clears the request (before a new run).
+void clear_interrupt() noexcept;
+bool interrupt_requested() noexcept;
 
 /// Runs one pass with the adaptive event-driven scheme: Dormand–Prince 5(4) with dense output
 /// (Boost.Odeint), events (C = 0 in free flight; λ = 0 and V_t = 0 in contact; the end angle)

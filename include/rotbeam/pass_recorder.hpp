@@ -50,6 +50,9 @@ public:
   void finish(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Phase phase, const ContactLoad& load);
 
   bool in_episode() const { return in_episode_; }
+  /// True when the pass must stop now: an interrupt was requested or the validity limit was
+  /// breached with deflection_limit_is_error (the failure is recorded the first time it is seen).
+  bool stop_requested(double t);
   long& steps() { return result_.summary.steps; }
   long& rhs() { return result_.summary.rhs_evaluations; }
 
@@ -74,6 +77,8 @@ private:
   double h_start_ = 0, work_ = 0, impact_jumps_ = 0, energy_scale_ = 0;
   double normal_time_integral_ = 0;
   bool deflection_warned_ = false;
+  bool validity_breached_ = false;
+  double validity_ratio_ = 0;
 };
 
 }  // namespace rotbeam

@@ -3,6 +3,7 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <functional>
@@ -20,18 +21,29 @@ std::string format_number(double v) {
   return s.str();
 }
 
-// A short, single-line rendering of a TOML node for error messages.
+// A short, single-line rendering of a TOML node for error messages, with numbers in their shortest
+// round-trip form (what the user typed: -0.0635, not -0.063500000000000001).
 std::string render(const toml::node& node) {
+  if (node.is_string()) return '"' + *node.value<std::string>() + '"';
+  if (node.is_integer()) return std::to_string(*node.value<int64_t>());
+  if (node.is_floating_point()) {
+    const double v = *node.value<double>();
+    if (std::isnan(v)) return "nan";
+    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+    char buf[64];
+    const auto res = std::to_chars(buf, buf + sizeof buf, v);
+    return std::string(buf, res.ptr);
+  }
+  if (node.is_boolean()) return *node.value<bool>() ? "true" : "false";
+  if (const toml::array* arr = node.as_array()) {
+    std::string out = "[";
+    for (std::size_t i = 0; i < arr->size(); ++i) out += (i ? ", " : "") + render((*arr)[i]);
+    return out + "]";
+  }
+  if (node.is_table()) return "{…}";
   std::ostringstream s;
-  if (node.is_string())
-    s << '"' << *node.value<std::string>() << '"';
-  else if (node.is_array() || node.is_table())
-    s << toml::toml_formatter{node, toml::format_flags::none};
-  else
-    node.visit([&](auto&& v) { s << v; });
-  std::string out = s.str();
-  std::replace(out.begin(), out.end(), '\n', ' ');
-  return out;
+  node.visit([&](auto&& v) { s << v; });
+  return s.str();
 }
 
 [[noreturn]] void fail(const std::string& key, const toml::node& node, const std::string& why) {
@@ -174,6 +186,7 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
        [](Parsed& p, auto& k, auto& n) { p.config.corrector_max_iterations = integer_in(k, n, 1, 10000); }},
       {"simulation.max_impacts", [](Parsed& p, auto& k, auto& n) { p.config.max_impacts = integer_in(k, n, 1, 100000000); }},
       {"simulation.deflection_warning_ratio", [](Parsed& p, auto& k, auto& n) { p.config.deflection_warning_ratio = positive(k, n); }},
+      {"simulation.deflection_limit_is_error", [](Parsed& p, auto& k, auto& n) { p.config.deflection_limit_is_error = boolean(k, n); }},
       {"output.interval_s", [](Parsed& p, auto& k, auto& n) { p.config.output_interval_s = number_in(k, n, 0.0, INFINITY, false, true); }},
       {"compat.thesis_forces", [](Parsed& p, auto& k, auto& n) { p.config.thesis_forces = boolean(k, n); }},
       {"compat.thesis_dcdt", [](Parsed& p, auto& k, auto& n) { p.config.thesis_dcdt = boolean(k, n); }},
@@ -282,6 +295,21 @@ Config resolve(toml::table& root, const std::vector<std::string>& overrides) {
                         "initial.modal_displacement (a rigid start has q = q̇ = 0)");
     c.start = "flexible";
   }
+  // A flexible start must begin clear of the surface.
+  if (c.start == "flexible") {
+    const Model probe = make_model(c.physical);
+    Eigen::VectorXd q0(n);
+    for (int i = 0; i < n; ++i) q0[i] = c.modal_displacement[i];
+    const double x_tip = c.physical.hub_radius_m + c.physical.length_m -
+                         q0.dot(probe.integrals->isp_tip * q0) / (2.0 * c.physical.length_m);
+    const double c0 = x_tip * std::cos(probe.theta0) - probe.integrals->s_tip.dot(q0) * std::sin(probe.theta0) -
+                      probe.surface_distance;
+    if (c0 >= 0.0) {
+      const std::string what = "the initial shape already reaches the surface (gap " + format_number(c0) + " m >= 0)";
+      if (p.displacement_node) fail("initial.modal_displacement", *p.displacement_node, what);
+      throw ConfigError(what);
+    }
+  }
   // The surface must be reachable before the end angle for a rigid start.
   if (c.start == "rigid") {
     const Model probe = make_model(c.physical);
@@ -325,6 +353,7 @@ PassOptions Config::pass_options() const {
   o.output_interval_s = output_interval_s;
   o.deflection_warning_ratio = deflection_warning_ratio;
   o.max_impacts = max_impacts;
+  o.deflection_limit_is_error = deflection_limit_is_error;
   o.rtol = rtol;
   o.atol = atol;
   o.max_step_s = max_step_s;
@@ -366,7 +395,8 @@ nlohmann::json Config::to_json() const {
                      {"corrector_tolerance", corrector_tolerance},
                      {"corrector_max_iterations", corrector_max_iterations},
                      {"max_impacts", max_impacts},
-                     {"deflection_warning_ratio", deflection_warning_ratio}};
+                     {"deflection_warning_ratio", deflection_warning_ratio},
+                     {"deflection_limit_is_error", deflection_limit_is_error}};
   j["output"] = {{"interval_s", output_interval_s}};
   j["compat"] = {{"thesis_forces", thesis_forces},
                  {"thesis_dcdt", thesis_dcdt},

@@ -30,6 +30,9 @@ using DenseStepper = odeint::result_of::make_dense_output<odeint::runge_kutta_do
 
 constexpr int kSamplesPerStep = 4;      // interior samples of the dense output per step
 constexpr int kMaxInstantTransitions = 50;  // phase changes without time advancing → chatter diagnostic
+// An accepted step shorter than this fraction of the pass means the tolerance cannot be met in
+// double precision (at rtol ≥ 1e-13 the steps stay above ~1e-9 s for a pass of ~1e-2 s).
+constexpr double kMinStepFraction = 1e-12;
 
 std::string fmt(double v) {
   std::ostringstream s;
@@ -213,6 +216,33 @@ private:
     }
   }
 
+  // One accepted step of the dense-output stepper; false (with a `step_underflow` failure recorded
+  // and the pass finished) when the step-size control cannot meet the tolerance.
+  bool step(double& ta, double& tb) {
+    try {
+      const auto interval = stepper_.do_step([this](const State& x, State& d, double t) { rhs(x, d, t); });
+      ta = interval.first;
+      tb = interval.second;
+    } catch (const std::exception& e) {
+      return fail_step(std::string("the step-size control failed: ") + e.what());
+    }
+    dt_ = stepper_.current_time_step();
+    ++rec_.steps();
+    const double min_step = kMinStepFraction * t_end_;
+    if (!(tb > ta) || tb - ta < min_step)
+      return fail_step("the accepted step " + fmt(tb - ta) + " s is below " + fmt(min_step) + " s");
+    return true;
+  }
+
+  bool fail_step(const std::string& why) {
+    rec_.fail("step_underflow", t_,
+              why + " (rtol = " + fmt(opt_.rtol) + ", atol = " + fmt(opt_.atol) + ", last step " + fmt(dt_) +
+                  " s): the tolerance cannot be met in double precision here");
+    rec_.finish(t_, q_, qd_, phase_, load_);
+    done_ = true;
+    return false;
+  }
+
   void reinitialize() {
     pack();
     stepper_.initialize(x_, t_, std::max(dt_, 1e-9));
@@ -231,9 +261,8 @@ private:
     double offset = armed ? 0.0 : eps;
     double g_prev = gap(model_, t_, q_) - offset;
     while (t_ < t_end_) {
-      const auto [ta, tb] = stepper_.do_step([this](const State& x, State& d, double t) { rhs(x, d, t); });
-      dt_ = stepper_.current_time_step();
-      ++rec_.steps();
+      double ta = 0, tb = 0;
+      if (!step(ta, tb)) return;
       const double te = std::min(tb, t_end_);
       auto g = [&](double t) {
         stepper_.calc_state(t, xs_);
@@ -266,6 +295,7 @@ private:
       }
       rec_.accept(t_, q_, qd_, Phase::free, {}, {});
       instant_transitions_ = 0;
+      if (rec_.stop_requested(t_)) break;
     }
     rec_.finish(t_, q_, qd_, Phase::free, {});
     done_ = true;
@@ -325,9 +355,8 @@ private:
       painleve_ = false;
       const double lambda0 = std::min(state_lambda(t_, x_), 0.0);
       const double slip0 = state_slip_speed(t_, x_);
-      const auto [ta, tb] = stepper_.do_step([this](const State& x, State& d, double t) { rhs(x, d, t); });
-      dt_ = stepper_.current_time_step();
-      ++rec_.steps();
+      double ta = 0, tb = 0;
+      if (!step(ta, tb)) return;
       if (painleve_) return fail_painleve(painleve_t_, painleve_abc_[0], painleve_abc_[1], painleve_abc_[2]);
       const double te = std::min(tb, t_end_);
       // Separation: λ crosses 0 upward. Slip stop: s·V_t crosses 0 downward.
@@ -382,6 +411,7 @@ private:
         slip_ = d.direction;
       }
       instant_transitions_ = 0;
+      if (rec_.stop_requested(t_)) break;
     }
     rec_.finish(t_, q_, qd_, Phase::contact, load_);
     done_ = true;

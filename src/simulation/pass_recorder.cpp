@@ -1,9 +1,35 @@
 #include "rotbeam/pass_recorder.hpp"
 
+#include <atomic>
 #include <cmath>
 #include <sstream>
 
 namespace rotbeam {
+
+namespace {
+std::atomic<bool> g_interrupt{false};
+}  // namespace
+
+void request_interrupt() noexcept { g_interrupt.store(true); }
+void clear_interrupt() noexcept { g_interrupt.store(false); }
+bool interrupt_requested() noexcept { return g_interrupt.load(); }
+
+bool PassRecorder::stop_requested(double t) {
+  if (result_.failure) return true;
+  if (g_interrupt.load()) {
+    fail("interrupted", t, "the run was interrupted (SIGINT/SIGTERM); results up to here are kept");
+    return true;
+  }
+  if (validity_breached_) {
+    std::ostringstream s;
+    s << "max |y_t|/L = " << validity_ratio_ << " exceeds simulation.deflection_warning_ratio = "
+      << options_.deflection_warning_ratio
+      << " (simulation.deflection_limit_is_error = true): beyond the quadratic foreshortening model";
+    fail("validity", t, s.str());
+    return true;
+  }
+  return false;
+}
 
 const char* phase_name(Phase p) {
   switch (p) {
@@ -75,6 +101,10 @@ void PassRecorder::track(double t, const Eigen::VectorXd& q, const Eigen::Vector
   (void)qd;
   const double ratio = std::abs(model_.integrals->s_tip.dot(q)) / model_.length;
   if (ratio > result_.summary.max_tip_deflection_ratio) result_.summary.max_tip_deflection_ratio = ratio;
+  if (options_.deflection_limit_is_error && ratio > options_.deflection_warning_ratio && !validity_breached_) {
+    validity_breached_ = true;
+    validity_ratio_ = ratio;
+  }
   if (!deflection_warned_ && ratio > options_.deflection_warning_ratio) {
     deflection_warned_ = true;
     std::ostringstream s;

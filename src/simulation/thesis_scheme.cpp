@@ -133,6 +133,7 @@ private:
       t_ += h;
       c0 = c1;
       rec_.accept(t_, q_, qd_, Phase::free, {}, {});
+      if (rec_.stop_requested(t_)) break;
     }
     rec_.finish(t_, q_, qd_, Phase::free, {});
     return Next::done;
@@ -263,6 +264,7 @@ private:
         lambda_prev_ = lambda_n;
         lambda_pred_ = lambda_n;
         (void)vy0;
+        if (rec_.stop_requested(t_)) break;
         continue;
       }
       // Separation (Step 4b): λ = 0 by linear interpolation over the step.

@@ -1,0 +1,202 @@
+// docs/reliability.md is the test data: every row of its tables is run against the binary.
+// Plus the failure kinds no configuration reaches (stick, non-finite) and interruption.
+#include "rotbeam/contact.hpp"
+#include "rotbeam/pass.hpp"
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <vector>
+
+using namespace rotbeam;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Row {
+  std::string section, label, args, message;
+  int exit_code = 0;
+};
+
+std::vector<std::string> cells(std::string line) {
+  const std::string escaped_bar = "\x01";
+  for (std::size_t p; (p = line.find("\\|")) != std::string::npos;) line.replace(p, 2, escaped_bar);
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  for (std::string cell; std::getline(ss, cell, '|');) {
+    for (std::size_t p; (p = cell.find(escaped_bar)) != std::string::npos;) cell.replace(p, 1, "|");
+    const auto b = cell.find_first_not_of(' '), e = cell.find_last_not_of(' ');
+    out.push_back(b == std::string::npos ? "" : cell.substr(b, e - b + 1));
+  }
+  return out;
+}
+
+std::string unquote(const std::string& s) {
+  if (s.size() >= 2 && s.front() == '`' && s.back() == '`') return s.substr(1, s.size() - 2);
+  return s;
+}
+
+std::vector<Row> rows() {
+  std::ifstream in(std::string(ROTBEAM_SOURCE_DIR) + "/docs/reliability.md");
+  std::vector<Row> out;
+  std::string section;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("## ", 0) == 0) section = line.substr(3);
+    if (line.rfind("| ", 0) != 0 || line.find('`') == std::string::npos) continue;
+    const std::vector<std::string> c = cells(line);
+    // "", #/kind, input/configuration, arguments, exit, message
+    if (c.size() < 6) continue;
+    Row r;
+    r.section = section;
+    r.label = c[1] + " " + c[2];
+    r.args = unquote(c[3]);
+    r.exit_code = std::stoi(c[4]);
+    r.message = unquote(c[5]);
+    out.push_back(r);
+  }
+  return out;
+}
+
+std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char ch : s) q += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+  return q + "'";
+}
+
+struct Outcome {
+  int status = -1;
+  std::string err;
+};
+
+Outcome run(const std::string& args, const std::string& out_dir) {
+  std::string cmd = ROTBEAM_CLI;
+  std::stringstream ss(args);
+  for (std::string a; ss >> a;) {
+    if (a == "OUT") a = out_dir;
+    if (a.rfind("DATA/", 0) == 0) a = std::string(ROTBEAM_SOURCE_DIR) + "/tests/data/" + a.substr(5);
+    cmd += " " + quote(a);
+  }
+  const std::string err_file = out_dir + ".stderr";
+  cmd += " > /dev/null 2> " + quote(err_file);
+  Outcome o;
+  const int st = std::system(cmd.c_str());
+  o.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  std::ifstream e(err_file);
+  o.err.assign(std::istreambuf_iterator<char>(e), {});
+  fs::remove(err_file);
+  return o;
+}
+
+std::string fresh_dir(const std::string& name) {
+  const fs::path p = fs::path(::testing::TempDir()) / ("rotbeam_rel_" + std::to_string(getpid()) + "_" + name);
+  fs::remove_all(p);
+  return p.string();
+}
+
+}  // namespace
+
+TEST(Reliability, EveryBadInputRowOfTheDocument) {
+  int count = 0;
+  for (const Row& r : rows()) {
+    if (r.section.rfind("Bad input", 0) != 0) continue;
+    ++count;
+    const std::string out = fresh_dir("bad" + std::to_string(count));
+    const Outcome o = run(r.args, out);
+    EXPECT_EQ(o.status, r.exit_code) << r.label << ": " << r.args << "\n" << o.err;
+    EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << r.label << ": " << o.err;
+    EXPECT_NE(o.err.find(r.message), std::string::npos) << r.label << "\n  expected: " << r.message << "\n  got:      " << o.err;
+    EXPECT_FALSE(fs::exists(out)) << r.label << ": left " << out << " behind";
+  }
+  EXPECT_GE(count, 30);
+}
+
+TEST(Reliability, EveryNumericalFailureRowOfTheDocument) {
+  int count = 0;
+  for (const Row& r : rows()) {
+    if (r.section.rfind("Numerical failures", 0) != 0) continue;
+    ++count;
+    const std::string out = fresh_dir("num" + std::to_string(count));
+    const Outcome o = run(r.args, out);
+    EXPECT_EQ(o.status, r.exit_code) << r.label << "\n" << o.err;
+    EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
+    EXPECT_NE(o.err.find(r.message), std::string::npos) << r.label << "\n  expected: " << r.message << "\n  got: " << o.err;
+    EXPECT_NE(o.err.find(" at t = "), std::string::npos) << o.err;
+    EXPECT_NE(o.err.find("θ = "), std::string::npos) << o.err;
+    std::ifstream summary(out + "/summary.json");
+    ASSERT_TRUE(summary) << r.label;
+    const auto j = nlohmann::json::parse(summary);
+    EXPECT_EQ(j["failure"]["kind"], cells("| " + r.label + " |")[1].substr(0, j["failure"]["kind"].get<std::string>().size()));
+    std::ifstream history(out + "/history.csv");
+    const std::string h((std::istreambuf_iterator<char>(history)), {});
+    EXPECT_GT(std::count(h.begin(), h.end(), '\n'), 2) << "the partial history is kept";
+    fs::remove_all(out);
+  }
+  EXPECT_EQ(count, 5);
+}
+
+TEST(Reliability, StickIsDiagnosedByTheLockedTipAnalysis) {
+  // A beam held statically against the surface (no spin, q̇ = 0): with the tip locked, the
+  // tangential force needed is within μF_n, so the decision is `stick`; with μ = 0 it slides.
+  PhysicalParameters p;
+  p.speed_rpm = 0.0;
+  Model model = make_model(p);
+  model.surface_distance = -1e-3;
+  const ModalIntegrals& mi = *model.integrals;
+  const Eigen::VectorXd kinv_s = mi.s_tip.cwiseQuotient(mi.r4);
+  const Eigen::VectorXd q = -1e-3 * kinv_s / mi.s_tip.dot(kinv_s);
+  const Eigen::VectorXd qd = Eigen::VectorXd::Zero(model.n);
+  Workspace ws(model.n);
+  TipKinematics tip(model.n);
+  evaluate_dynamics(model, q, qd, ws);
+  tip_kinematics(model, 0.0, q, qd, tip);
+  const SlipDecision held = decide_slip(model, FrictionModel{0.4, false}, tip, ws);
+  EXPECT_EQ(held.kind, SlipDecision::Kind::stick);
+  EXPECT_LT(held.stick_normal, 0.0);
+  EXPECT_LE(std::abs(held.stick_tangential), 0.4 * std::abs(held.stick_normal));
+  EXPECT_FALSE(held.from_velocity);
+}
+
+TEST(Reliability, NonFiniteStateIsDiagnosed) {
+  // A NaN in the state (no input produces one: every input is range-checked) stops both schemes
+  // with a `non_finite` failure instead of looping or writing NaN results as if valid.
+  PhysicalParameters p;
+  const Model model = make_model(p);
+  InitialConditions ic;
+  ic.rigid_start = false;
+  ic.q0 = Eigen::VectorXd::Zero(model.n);
+  ic.qd0 = Eigen::VectorXd::Zero(model.n);
+  ic.qd0[2] = std::numeric_limits<double>::quiet_NaN();
+  PassOptions opt;
+  for (const PassResult& r : {run_thesis_pass(model, ImpactLaw{}, FrictionModel{}, ic, opt),
+                              run_adaptive_pass(model, ImpactLaw{}, FrictionModel{}, ic, opt)}) {
+    ASSERT_TRUE(r.failure.has_value()) << r.summary.scheme;
+    EXPECT_TRUE(r.failure->kind == "non_finite" || r.failure->kind == "step_underflow")
+        << r.summary.scheme << ": " << r.failure->kind << " " << r.failure->message;
+  }
+}
+
+TEST(Reliability, InterruptKeepsACompleteRecord) {
+  // SIGINT 0.3 s into a ~1 s run: exit 130, three complete files, failure.kind = "interrupted".
+  const std::string out = fresh_dir("interrupt");
+  const std::string cmd = "sh -c '" + std::string(ROTBEAM_CLI) +
+                          " run --set beam.modes=10 --set simulation.scheme=thesis -o " + out +
+                          " >/dev/null 2>&1 & pid=$!; sleep 0.3; kill -INT $pid; wait $pid; exit $?'";
+  const int st = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(st));
+  EXPECT_EQ(WEXITSTATUS(st), 130);
+  std::ifstream summary(out + "/summary.json");
+  ASSERT_TRUE(summary);
+  const auto j = nlohmann::json::parse(summary);
+  EXPECT_EQ(j["failure"]["kind"], "interrupted");
+  EXPECT_LT(j["failure"]["theta_deg"].get<double>(), 90.0);
+  for (const auto& entry : fs::directory_iterator(out))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+  fs::remove_all(out);
+}
