@@ -1,0 +1,63 @@
+// Long run: N passes in one process over the 80 Table 5-2 cases (cycled), on T threads.
+// Reports the resident memory as the passes accumulate and checks that every pass gives exactly
+// the summary of the first pass of the same case.
+//   long_run [N=1000] [T=2]
+#include "rotbeam/config.hpp"
+#include "rotbeam/pass_output.hpp"
+#include "rotbeam/process_memory.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <mutex>
+#include <thread>
+
+using namespace rotbeam;
+
+int main(int argc, char** argv) {
+  const int passes = argc > 1 ? std::atoi(argv[1]) : 1000;
+  const int threads = argc > 2 ? std::atoi(argv[2]) : 2;
+  std::vector<Config> cases;
+  for (double rpm : {550.0, 1000.0, 2000.0, 3000.0})
+    for (double depth : {0.02, 0.04, 0.06, 0.08})
+      for (double mu : {0.1, 0.3, 0.4, 0.5, 0.7}) {
+        Config c = load_config_string("", {});
+        c.physical.speed_rpm = rpm;
+        c.physical.depth_fraction = depth;
+        c.physical.friction = mu;
+        cases.push_back(c);
+      }
+  auto fingerprint = [](const PassResult& r, const Config& c) {
+    nlohmann::json j = summary_json(r, c);
+    j.erase("wall_time_s");
+    return j.dump() + std::to_string(r.history.size()) + std::to_string(r.history.back().jacobi);
+  };
+  std::vector<std::string> reference(cases.size());
+  std::mutex mutex;
+  std::atomic<int> next{0}, done{0}, mismatches{0};
+  const double rss_start = resident_memory_mib();
+  std::printf("passes  resident_MiB\n%6d  %12.1f\n", 0, rss_start);
+  const auto t0 = std::chrono::steady_clock::now();
+  auto worker = [&] {
+    for (int i; (i = next.fetch_add(1)) < passes;) {
+      const std::size_t k = static_cast<std::size_t>(i) % cases.size();
+      const PassResult r = cases[k].run_pass();
+      const std::string f = fingerprint(r, cases[k]);
+      std::lock_guard<std::mutex> lock(mutex);
+      if (reference[k].empty())
+        reference[k] = f;
+      else if (reference[k] != f)
+        ++mismatches;
+      const int d = ++done;
+      if (d == 80 || d % 200 == 0 || d == passes) std::printf("%6d  %12.1f\n", d, resident_memory_mib());
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
+  for (std::thread& t : pool) t.join();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("%d passes on %d threads in %.1f s; results differing from the first pass of their case: %d\n", passes,
+              threads, seconds, mismatches.load());
+  return mismatches.load() == 0 ? 0 : 1;
+}
