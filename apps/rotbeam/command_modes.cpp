@@ -3,7 +3,10 @@
 #include "common.hpp"
 
 #include "rotbeam/atomic_file.hpp"
+#include "python_bridge.hpp"
 #include "rotbeam/modal_analysis.hpp"
+
+#include <filesystem>
 
 #include <algorithm>
 #include <cmath>
@@ -19,6 +22,7 @@ struct ModesOptions {
   std::string speeds;
   bool json = false;
   std::string csv_path;
+  std::string plot_path;
 };
 
 // "A:B:N" (N evenly spaced speeds from A to B) or a single value "A".
@@ -68,7 +72,9 @@ int run_modes(const ModesOptions& o) {
   const Eigen::MatrixXd f = frequencies_versus_speed(config.physical, speeds);
   const int n = config.physical.modes;
 
-  if (!o.csv_path.empty()) {
+  std::string csv_path = o.csv_path;
+  if (!o.plot_path.empty() && csv_path.empty()) csv_path = o.plot_path + ".csv";
+  if (!csv_path.empty()) {
     std::ostringstream csv;
     csv.precision(12);
     csv << "speed_rpm";
@@ -79,7 +85,12 @@ int run_modes(const ModesOptions& o) {
       for (int k = 0; k < n; ++k) csv << "," << f(static_cast<Eigen::Index>(s), k);
       csv << "\n";
     }
-    write_file_atomically(o.csv_path, csv.str());
+    write_file_atomically(csv_path, csv.str());
+  }
+  if (!o.plot_path.empty()) {
+    const int code = run_python_plots({csv_path, "--campbell", o.plot_path});
+    if (o.csv_path.empty()) std::filesystem::remove(csv_path);
+    if (code != 0) return code;
   }
   if (o.json) {
     nlohmann::json j;
@@ -93,7 +104,7 @@ int run_modes(const ModesOptions& o) {
     std::cout << j.dump(2) << "\n";
     return kSuccess;
   }
-  if (!o.csv_path.empty()) return kSuccess;
+  if (!o.csv_path.empty() || !o.plot_path.empty()) return kSuccess;
   std::cout << "In-plane natural frequencies of the spinning filament, linearised about the straight beam\n"
             << "(L = " << config.physical.length_m << " m, D = " << config.physical.diameter_m
             << " m, r_h = " << config.physical.hub_radius_m << " m, " << n << " assumed modes)\n\n";
@@ -125,6 +136,7 @@ Command add_modes_command(CLI::App& app) {
                   "Speeds A:B:N (N points from A to B rpm) or one speed; default: 0, the Table 5-2 speeds and the case's speed");
   sub->add_flag("--json", opts->json, "Print {\"speeds_rpm\": [...], \"frequencies_hz\": [[...], ...]}");
   sub->add_option("--csv", opts->csv_path, "Also write the table to this CSV file");
+  sub->add_option("--plot", opts->plot_path, "Draw a Campbell diagram (with engine-order lines) into this PNG");
   return [opts] { return run_modes(*opts); };
 }
 

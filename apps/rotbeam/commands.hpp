@@ -12,5 +12,7 @@ Command add_modes_command(CLI::App& app);
 Command add_impact_command(CLI::App& app);
 Command add_run_command(CLI::App& app);
 Command add_converge_command(CLI::App& app);
+Command add_sweep_command(CLI::App& app);
+Command add_plot_command(CLI::App& app);
 
 }  // namespace rotbeam::cli

@@ -18,9 +18,13 @@ int main(int argc, char** argv) {
   Command impact = add_impact_command(app);
   Command run = add_run_command(app);
   Command converge = add_converge_command(app);
+  Command sweep = add_sweep_command(app);
+  Command plot = add_plot_command(app);
   if (argc > 1 && argv[1][0] != '-' && std::string(argv[1]) != "modes" && std::string(argv[1]) != "impact" &&
-      std::string(argv[1]) != "run" && std::string(argv[1]) != "converge") {
-    print_error("unknown command '" + std::string(argv[1]) + "' (commands: run, converge, impact, modes; see rotbeam --help)");
+      std::string(argv[1]) != "run" && std::string(argv[1]) != "converge" &&
+      std::string(argv[1]) != "sweep" &&
+      std::string(argv[1]) != "plot") {
+    print_error("unknown command '" + std::string(argv[1]) + "' (commands: run, sweep, plot, converge, impact, modes; see rotbeam --help)");
     return kBadInput;
   }
   try {
@@ -40,6 +44,8 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("impact")) return impact();
     if (app.got_subcommand("run")) return run();
     if (app.got_subcommand("converge")) return converge();
+    if (app.got_subcommand("sweep")) return sweep();
+    if (app.got_subcommand("plot")) return plot();
   } catch (const rotbeam::ConfigError& e) {
     print_error(e.what());
     return kBadInput;

@@ -1,0 +1,91 @@
+// `rotbeam sweep`: a Cartesian grid of cases, in parallel, resumable (issue: studies).
+#include "commands.hpp"
+#include "common.hpp"
+
+#include "rotbeam/pass.hpp"
+#include "rotbeam/sweep.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <unistd.h>
+
+namespace rotbeam::cli {
+
+namespace {
+
+struct SweepCommandOptions {
+  CaseOptions case_options;
+  std::vector<std::string> vary;
+  std::string output_dir;
+  int jobs = 0;
+};
+
+std::string duration(double s) {
+  char buf[32];
+  if (s < 90) std::snprintf(buf, sizeof buf, "%.0f s", s);
+  else std::snprintf(buf, sizeof buf, "%.0f min %02.0f s", std::floor(s / 60), std::fmod(s, 60));
+  return buf;
+}
+
+int run_sweep_command(const SweepCommandOptions& o) {
+  if (o.vary.empty()) throw ConfigError("--vary: give at least one KEY=V1,V2,… or KEY=A:B:N");
+  if (o.jobs < 0) throw ConfigError("--jobs " + std::to_string(o.jobs) + ": must be >= 0");
+  std::vector<SweepAxis> axes;
+  for (const std::string& spec : o.vary) axes.push_back(parse_sweep_axis(spec));
+  SweepOptions options;
+  options.config_path = o.case_options.config_path;
+  options.base_overrides = o.case_options.overrides;
+  options.dir = o.output_dir;
+  options.jobs = o.jobs;
+  const bool terminal = isatty(STDERR_FILENO);
+  options.on_case_finished = [terminal](const SweepProgress& p) {
+    if (terminal) {
+      const int width = 30, filled = p.total ? width * p.finished / p.total : width;
+      std::fprintf(stderr, "\r[%s%s] %d/%d cases%s, %s elapsed, ETA %s   ", std::string(filled, '#').c_str(),
+                   std::string(width - filled, '.').c_str(), p.finished, p.total,
+                   p.failed ? (", " + std::to_string(p.failed) + " failed").c_str() : "",
+                   duration(p.elapsed_s).c_str(), duration(p.eta_s).c_str());
+    } else {
+      std::string values;
+      for (const std::string& ov : p.last->overrides) values += (values.empty() ? "" : ", ") + ov;
+      std::fprintf(stderr, "%s %s (%s): %d/%d, ETA %s%s\n", p.last->folder.c_str(),
+                   sweep_status_name(p.last_result->status), values.c_str(), p.finished, p.total,
+                   duration(p.eta_s).c_str(),
+                   p.last_result->message.empty() ? "" : (" — " + p.last_result->message).c_str());
+    }
+    std::fflush(stderr);
+  };
+  install_interrupt_handlers();
+  const SweepReport r = run_sweep(axes, options);
+  if (terminal) std::fprintf(stderr, "\n");
+  std::cout << r.cases.size() << " cases: " << r.ran << " run (" << r.failed << " stopped on a diagnosed failure), "
+            << r.resumed << " already done, " << r.errors << " errors, " << r.interrupted << " interrupted\n";
+  for (std::size_t i = 0; i < r.cases.size(); ++i)
+    if (r.results[i].status == SweepStatus::failed || r.results[i].status == SweepStatus::error)
+      std::cout << "  " << r.cases[i].folder << " " << sweep_status_name(r.results[i].status) << ": "
+                << r.results[i].message << "\n";
+  std::cout << "wrote " << (options.dir / "sweep.csv").string() << " and a folder per case\n";
+  if (r.interrupted > 0) {
+    print_error("sweep interrupted: " + std::to_string(r.interrupted) +
+                " cases not finished; run the same command again to resume");
+    return kInterrupted;
+  }
+  return kSuccess;
+}
+
+}  // namespace
+
+Command add_sweep_command(CLI::App& app) {
+  auto opts = std::make_shared<SweepCommandOptions>();
+  CLI::App* sub = app.add_subcommand("sweep", "Run a Cartesian grid of cases in parallel (resumable); writes DIR/sweep.csv");
+  opts->case_options.add_to(*sub);
+  sub->add_option("--vary", opts->vary, "An axis: KEY=V1,V2,… (TOML values) or KEY=A:B:N (repeatable)")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  sub->add_option("-o,--output", opts->output_dir, "Output folder (created if needed)")->required();
+  sub->add_option("--jobs", opts->jobs, "Threads (default: all cores)");
+  return [opts] { return run_sweep_command(*opts); };
+}
+
+}  // namespace rotbeam::cli

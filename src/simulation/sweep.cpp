@@ -1,0 +1,273 @@
+#include "rotbeam/sweep.hpp"
+
+#include "rotbeam/atomic_file.hpp"
+#include "rotbeam/pass.hpp"
+#include "rotbeam/pass_output.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <mutex>
+#include <thread>
+
+namespace rotbeam {
+
+namespace {
+
+std::vector<std::string> split_top_level(const std::string& text) {
+  std::vector<std::string> out;
+  std::string cur;
+  int depth = 0;
+  bool quoted = false;
+  for (char c : text) {
+    if (c == '"') quoted = !quoted;
+    if (!quoted && c == '[') ++depth;
+    if (!quoted && c == ']') --depth;
+    if (c == ',' && depth == 0 && !quoted) {
+      out.push_back(cur);
+      cur.clear();
+    } else {
+      cur += c;
+    }
+  }
+  out.push_back(cur);
+  return out;
+}
+
+std::string number_literal(double v) {
+  if (v == std::floor(v) && std::abs(v) < 1e15) return std::to_string(static_cast<long long>(v));
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.15g", v);
+  std::string s = buf;
+  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
+  return s;
+}
+
+const char* kMetrics[] = {"impacts", "contact_episodes", "first_impact_deg", "last_separation_deg",
+                          "contact_time_s", "peak_normal_force_n", "mean_normal_force_n", "normal_impulse_n_s",
+                          "friction_work_j", "max_tip_deflection_ratio", "energy_audit_residual", "steps",
+                          "rhs_evaluations", "wall_time_s"};
+
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += (c == '"') ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+}  // namespace
+
+const char* sweep_status_name(SweepStatus s) {
+  switch (s) {
+    case SweepStatus::done: return "done";
+    case SweepStatus::resumed: return "resumed";
+    case SweepStatus::failed: return "failed";
+    case SweepStatus::error: return "error";
+    case SweepStatus::interrupted: return "interrupted";
+  }
+  return "?";
+}
+
+SweepAxis parse_sweep_axis(const std::string& spec) {
+  const auto eq = spec.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == spec.size())
+    throw ConfigError("--vary " + spec + ": expected KEY=V1,V2,… or KEY=A:B:N");
+  SweepAxis axis;
+  axis.key = spec.substr(0, eq);
+  const std::string rest = spec.substr(eq + 1);
+  const bool is_range = rest.find(':') != std::string::npos && rest.find_first_of("[\"") == std::string::npos;
+  if (is_range) {
+    std::vector<std::string> parts;
+    std::size_t start = 0;
+    for (std::size_t p; (p = rest.find(':', start)) != std::string::npos; start = p + 1) parts.push_back(rest.substr(start, p - start));
+    parts.push_back(rest.substr(start));
+    auto number = [&](const std::string& s) {
+      std::size_t used = 0;
+      double v = 0;
+      try {
+        v = std::stod(s, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used == 0 || used != s.size() || !std::isfinite(v))
+        throw ConfigError("--vary " + spec + ": '" + s + "' is not a number");
+      return v;
+    };
+    if (parts.size() != 3) throw ConfigError("--vary " + spec + ": a range is A:B:N");
+    const double a = number(parts[0]), b = number(parts[1]), nd = number(parts[2]);
+    if (nd < 1 || nd != std::floor(nd) || nd > 100000) throw ConfigError("--vary " + spec + ": N must be a whole number from 1 to 100000");
+    const int n = static_cast<int>(nd);
+    for (int i = 0; i < n; ++i) axis.values.push_back(number_literal(n == 1 ? a : a + (b - a) * i / (n - 1)));
+  } else {
+    for (const std::string& v : split_top_level(rest)) {
+      if (v.empty()) throw ConfigError("--vary " + spec + ": an empty value");
+      axis.values.push_back(v);
+    }
+  }
+  return axis;
+}
+
+std::vector<SweepCase> sweep_cases(const std::vector<SweepAxis>& axes) {
+  std::size_t total = 1;
+  for (const SweepAxis& a : axes) total *= a.values.size();
+  std::vector<SweepCase> cases;
+  for (std::size_t i = 0; i < total; ++i) {
+    SweepCase c;
+    c.index = static_cast<int>(i);
+    std::size_t rem = i;
+    c.values.resize(axes.size());
+    for (std::size_t k = axes.size(); k-- > 0;) {
+      c.values[k] = axes[k].values[rem % axes[k].values.size()];
+      rem /= axes[k].values.size();
+    }
+    for (std::size_t k = 0; k < axes.size(); ++k) c.overrides.push_back(axes[k].key + "=" + c.values[k]);
+    char name[32];
+    std::snprintf(name, sizeof name, "case-%04zu", i + 1);
+    c.folder = name;
+    cases.push_back(c);
+  }
+  return cases;
+}
+
+SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& options) {
+  SweepReport report;
+  report.axes = axes;
+  report.cases = sweep_cases(axes);
+  report.results.resize(report.cases.size());
+  // Validate every case before running any.
+  std::vector<Config> configs;
+  for (const SweepCase& c : report.cases) {
+    std::vector<std::string> overrides = options.base_overrides;
+    overrides.insert(overrides.end(), c.overrides.begin(), c.overrides.end());
+    try {
+      configs.push_back(load_config(options.config_path, overrides));
+    } catch (const ConfigError& e) {
+      throw ConfigError(c.folder + " (" + [&] {
+        std::string s;
+        for (const std::string& o : c.overrides) s += (s.empty() ? "" : ", ") + o;
+        return s;
+      }() + "): " + e.what());
+    }
+  }
+  prepare_output_folder(options.dir);
+
+  // Finished earlier? A complete summary.json of the same configuration, not interrupted.
+  std::vector<std::size_t> todo;
+  for (std::size_t i = 0; i < report.cases.size(); ++i) {
+    std::ifstream in(options.dir / report.cases[i].folder / "summary.json");
+    bool finished = false;
+    if (in) {
+      try {
+        nlohmann::json j = nlohmann::json::parse(in);
+        const bool interrupted = j["failure"].is_object() && j["failure"]["kind"] == "interrupted";
+        if (!interrupted && j["config"] == configs[i].to_json()) {
+          report.results[i].summary = j;
+          report.results[i].status = SweepStatus::resumed;
+          if (j["failure"].is_object()) report.results[i].message = j["failure"]["message"].get<std::string>();
+          finished = true;
+        }
+      } catch (const std::exception&) {
+        finished = false;
+      }
+    }
+    if (finished)
+      ++report.resumed;
+    else
+      todo.push_back(i);
+  }
+
+  std::mutex mutex;
+  SweepProgress progress;
+  progress.total = static_cast<int>(report.cases.size());
+  progress.resumed = report.resumed;
+  progress.finished = report.resumed;
+  const auto t0 = std::chrono::steady_clock::now();
+  std::atomic<std::size_t> next{0};
+  int ran_now = 0;
+  auto worker = [&] {
+    for (std::size_t n; (n = next.fetch_add(1)) < todo.size();) {
+      if (interrupt_requested()) break;
+      const std::size_t i = todo[n];
+      SweepCaseResult res;
+      try {
+        const PassResult pass = configs[i].run_pass();
+        write_pass_outputs(options.dir / report.cases[i].folder, pass, configs[i]);
+        res.summary = summary_json(pass, configs[i]);
+        if (!pass.failure)
+          res.status = SweepStatus::done;
+        else if (pass.failure->kind == "interrupted")
+          res.status = SweepStatus::interrupted;
+        else
+          res.status = SweepStatus::failed;
+        if (pass.failure) res.message = pass.failure->kind + ": " + pass.failure->message;
+      } catch (const std::exception& e) {
+        res.status = SweepStatus::error;
+        res.message = e.what();
+      }
+      std::lock_guard<std::mutex> lock(mutex);
+      report.results[i] = res;
+      ++ran_now;
+      ++progress.finished;
+      if (res.status == SweepStatus::failed || res.status == SweepStatus::error) ++progress.failed;
+      progress.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      const int remaining = progress.total - progress.finished;
+      progress.eta_s = ran_now > 0 ? progress.elapsed_s / ran_now * remaining : 0.0;
+      progress.last = &report.cases[i];
+      progress.last_result = &report.results[i];
+      if (options.on_case_finished) options.on_case_finished(progress);
+    }
+  };
+  const int threads = options.jobs > 0 ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
+  std::vector<std::thread> pool;
+  for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
+  for (std::thread& t : pool) t.join();
+
+  // Cases never started (an interrupted sweep) are reported as interrupted.
+  for (std::size_t n = 0; n < todo.size(); ++n) {
+    SweepCaseResult& r = report.results[todo[n]];
+    if (r.summary.is_null() && r.status == SweepStatus::error && r.message.empty()) {
+      r.status = SweepStatus::interrupted;
+      r.message = "not run (interrupted)";
+    }
+  }
+  for (const SweepCaseResult& r : report.results) {
+    switch (r.status) {
+      case SweepStatus::done: ++report.ran; break;
+      case SweepStatus::failed: ++report.ran, ++report.failed; break;
+      case SweepStatus::error: ++report.errors; break;
+      case SweepStatus::interrupted: ++report.interrupted; break;
+      case SweepStatus::resumed: break;
+    }
+  }
+  write_file_atomically(options.dir / "sweep.csv", sweep_csv(report));
+  return report;
+}
+
+std::string sweep_csv(const SweepReport& report) {
+  std::string out = "case,folder";
+  for (const SweepAxis& a : report.axes) out += "," + csv_field(a.key);
+  out += ",status";
+  for (const char* m : kMetrics) out += std::string(",") + m;
+  out += ",message\n";
+  for (std::size_t i = 0; i < report.cases.size(); ++i) {
+    const SweepCase& c = report.cases[i];
+    const SweepCaseResult& r = report.results[i];
+    out += std::to_string(c.index + 1) + "," + c.folder;
+    for (const std::string& v : c.values) out += "," + csv_field(v);
+    out += std::string(",") + sweep_status_name(r.status);
+    for (const char* m : kMetrics) {
+      out += ",";
+      if (r.summary.is_object() && r.summary.contains(m) && !r.summary[m].is_null()) {
+        char buf[40];
+        std::snprintf(buf, sizeof buf, "%.17g", r.summary[m].get<double>());
+        out += buf;
+      }
+    }
+    out += "," + csv_field(r.message) + "\n";
+  }
+  return out;
+}
+
+}  // namespace rotbeam

@@ -1,0 +1,82 @@
+"""Studies from the command line: `rotbeam sweep` (progress, interruption, resumption),
+`rotbeam plot` and `rotbeam modes --plot` (pictures written, of a real size)."""
+
+import csv
+import os
+import signal
+import subprocess
+import time
+
+import pytest
+
+CLI = os.environ.get("ROTBEAM_CLI", "rotbeam")
+
+
+def run(*args, **kwargs):
+    return subprocess.run([CLI, *args], capture_output=True, text=True, **kwargs)
+
+
+def read_rows(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def test_sweep_reports_progress_lines_off_a_terminal(tmp_path):
+    done = run("sweep", "--vary", "hub.speed_rpm=2000,3000", "--vary", "surface.friction=0.1,0.5",
+               "--set", "output.interval_s=1e-3", "-o", str(tmp_path / "s"), "--jobs", "2")
+    assert done.returncode == 0, done.stderr
+    lines = [l for l in done.stderr.splitlines() if l.startswith("case-")]
+    assert len(lines) == 4 and all("ETA" in l for l in lines)
+    assert "4 cases: 4 run" in done.stdout
+    rows = read_rows(tmp_path / "s" / "sweep.csv")
+    assert [r["status"] for r in rows] == ["done"] * 4
+    assert {r["hub.speed_rpm"] for r in rows} == {"2000", "3000"}
+
+
+def test_an_interrupted_sweep_resumes(tmp_path):
+    out = tmp_path / "s"
+    args = [CLI, "sweep", "--vary", "beam.modes=8,9,10", "--vary", "surface.friction=0.1,0.3,0.5,0.7",
+            "--set", "output.interval_s=1e-3", "-o", str(out), "--jobs", "2"]
+    proc = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    time.sleep(2.0)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=120)
+    assert proc.returncode == 130, err
+    assert "run the same command again to resume" in err
+    rows = read_rows(out / "sweep.csv")
+    finished = [r for r in rows if r["status"] in ("done", "failed")]
+    assert 0 < len(finished) < 12
+    assert all(r["status"] == "interrupted" for r in rows if r not in finished)
+    # No case folder holds a half-written file, and interrupted cases are redone on resume.
+    for folder in out.iterdir():
+        if folder.is_dir():
+            assert not [p for p in folder.iterdir() if ".tmp" in p.name]
+    again = subprocess.run(args, capture_output=True, text=True, timeout=600)
+    assert again.returncode == 0, again.stderr
+    assert f"{len(finished)} already done" in again.stdout
+    assert all(r["status"] in ("done", "failed", "resumed") for r in read_rows(out / "sweep.csv"))
+
+
+def test_plot_writes_the_pictures_of_a_run_and_a_sweep(tmp_path):
+    assert run("run", "--set", "output.interval_s=1e-4", "-o", str(tmp_path / "r")).returncode == 0
+    done = run("plot", str(tmp_path / "r"))
+    assert done.returncode == 0, done.stderr
+    for name in ("normal_force_vs_y", "tip_path", "modal_coordinates", "energy", "impacts"):
+        png = tmp_path / "r" / f"{name}.png"
+        assert png.exists() and png.stat().st_size > 20_000, name
+    assert run("sweep", "--vary", "hub.speed_rpm=550,3000", "--set", "output.interval_s=1e-4",
+               "-o", str(tmp_path / "s")).returncode == 0
+    done = run("plot", str(tmp_path / "s"), "-o", str(tmp_path / "pics"))
+    assert done.returncode == 0, done.stderr
+    for name in ("sweep_metrics", "sweep_normal_force_vs_y"):
+        assert (tmp_path / "pics" / f"{name}.png").stat().st_size > 20_000, name
+    bad = run("plot", str(tmp_path))
+    assert bad.returncode == 2 and "neither a run folder" in bad.stderr
+
+
+def test_modes_draws_a_campbell_diagram(tmp_path):
+    png = tmp_path / "campbell.png"
+    done = run("modes", "--speeds-rpm", "0:5000:51", "--plot", str(png))
+    assert done.returncode == 0, done.stderr
+    assert png.stat().st_size > 20_000
+    assert not (tmp_path / "campbell.png.csv").exists()
