@@ -6,7 +6,12 @@ bash scripts/install-deps.sh
 bash scripts/build.sh
 echo
 ./build/rotbeam run examples/thesis-base.toml -o out/base
+./build/rotbeam plot out/base
+./build/rotbeam modes examples/thesis-base.toml --speeds-rpm 0:5000:51 --plot out/base/campbell.png
 echo
 ./build/rotbeam impact examples/thesis-base.toml
 echo
-./build/rotbeam modes examples/thesis-base.toml
+echo "Pictures of the pass: out/base/*.png (normal force against the tip position, tip path, modal"
+echo "coordinates, energy audit, impacts; Campbell diagram). The thesis's chapter 5, regenerated with a"
+echo "report: ./build/rotbeam reproduce -o out/reproduction (about a minute)."
+

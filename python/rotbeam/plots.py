@@ -288,7 +288,13 @@ def main(argv=None):
     parser.add_argument("-o", "--output", help="where to write the PNGs (default: the folder itself)")
     parser.add_argument("--cases", action="store_true", help="for a sweep, also the pictures of every case")
     parser.add_argument("--campbell", metavar="PNG", help="draw a Campbell diagram of the CSV into PNG")
+    parser.add_argument("--reproduce", action="store_true", help="draw the figures and report of `rotbeam reproduce`")
     args = parser.parse_args(argv)
+    if args.reproduce:
+        from .reproduce import write_report
+        report = write_report(Path(args.folder))
+        print(f"wrote {report}")
+        return 0
     if args.campbell:
         for w in plot_campbell(args.folder, args.campbell):
             print(f"wrote {w}")
