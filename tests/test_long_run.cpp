@@ -41,5 +41,11 @@ TEST(LongRun, MemoryStaysFlatAndResultsRepeat) {
               rss_after_first_round, cases.size(), rss_end);
   // Flat: after the first round (caches built, allocator warmed) the RSS may not grow by more than
   // 8 MiB over seven more rounds (a leak of even one history per pass would add tens of MiB).
+  // Under AddressSanitizer freed memory is quarantined, not reused, so RSS grows by design there;
+  // that build checks leaks with LeakSanitizer instead.
+#if defined(__SANITIZE_ADDRESS__)
+  std::printf("AddressSanitizer build: the RSS bound is not checked (quarantine)\n");
+#else
   EXPECT_LT(rss_end - rss_after_first_round, 8.0);
+#endif
 }
