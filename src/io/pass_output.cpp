@@ -1,12 +1,15 @@
 #include "rotbeam/pass_output.hpp"
 
 #include "rotbeam/atomic_file.hpp"
+#include "rotbeam/detail/csv.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 
 namespace rotbeam {
+
+using detail::csv_field;
 
 namespace {
 
@@ -21,13 +24,6 @@ void put(std::string& out, double v) {
 }
 
 nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += (c == '"') ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
 
 }  // namespace
 

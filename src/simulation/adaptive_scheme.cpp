@@ -12,6 +12,7 @@
 // crossing and re-crossing within one step is still found.
 #include "rotbeam/pass.hpp"
 #include "rotbeam/pass_recorder.hpp"
+#include "rotbeam/detail/diagnostics.hpp"
 
 #include <boost/math/tools/toms748_solve.hpp>
 #include <boost/numeric/odeint.hpp>
@@ -34,12 +35,7 @@ constexpr int kMaxInstantTransitions = 50;  // phase changes without time advanc
 // double precision (at rtol ≥ 1e-13 the steps stay above ~1e-9 s for a pass of ~1e-2 s).
 constexpr double kMinStepFraction = 1e-12;
 
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
+using detail::short_number;
 
 class AdaptiveScheme {
 public:
@@ -230,13 +226,13 @@ private:
     ++rec_.steps();
     const double min_step = kMinStepFraction * t_end_;
     if (!(tb > ta) || tb - ta < min_step)
-      return fail_step("the accepted step " + fmt(tb - ta) + " s is below " + fmt(min_step) + " s");
+      return fail_step("the accepted step " + short_number(tb - ta) + " s is below " + short_number(min_step) + " s");
     return true;
   }
 
   bool fail_step(const std::string& why) {
     rec_.fail("step_underflow", t_,
-              why + " (rtol = " + fmt(opt_.rtol) + ", atol = " + fmt(opt_.atol) + ", last step " + fmt(dt_) +
+              why + " (rtol = " + short_number(opt_.rtol) + ", atol = " + short_number(opt_.atol) + ", last step " + short_number(dt_) +
                   " s): the tolerance cannot be met in double precision here");
     rec_.finish(t_, q_, qd_, phase_, load_);
     done_ = true;
@@ -328,7 +324,7 @@ private:
     const SlipDecision slip = decide_slip(model_, friction_, tip_, ws_);
     if (slip.kind == SlipDecision::Kind::stick) return fail_stick(slip);
     if (slip.kind == SlipDecision::Kind::separate) {
-      rec_.event(t_, q_, "lift_off", "λ with the tip locked = " + fmt(slip.stick_normal) + " N > 0: no sustained contact");
+      rec_.event(t_, q_, "lift_off", detail::lift_off_message(slip.stick_normal));
       phase_ = Phase::free;
       ++instant_transitions_;
       return;
@@ -337,7 +333,7 @@ private:
     const AccelerationMultiplier am = acceleration_multiplier(model_, friction_, t_, q_, qd_, slip_, ws_, tip_);
     if (am.solution.status != MultiplierSolution::Status::unique) return fail_painleve(t_, am.a, am.b, am.c);
     if (am.solution.lambda > 0.0) {
-      rec_.event(t_, q_, "lift_off", "λ = " + fmt(am.solution.lambda) + " N > 0 at the touch: no sustained contact");
+      rec_.event(t_, q_, "lift_off", "λ = " + short_number(am.solution.lambda) + " N > 0 at the touch: no sustained contact");
       phase_ = Phase::free;
       ++instant_transitions_;
       return;
@@ -418,19 +414,13 @@ private:
   }
 
   void fail_painleve(double t, double a, double b, double c) {
-    rec_.fail("painleve", t,
-              "Painlevé's paradox: a λ + b|λ| = c has " +
-                  std::string(c > 0 ? "two admissible solutions" : "no admissible solution") + " (a = " + fmt(a) +
-                  " 1/kg, b = " + fmt(b) + " 1/kg, c = " + fmt(c) + " m/s², a − b = " + fmt(a - b) + ")");
+    rec_.fail("painleve", t, detail::painleve_message(a, b, c));
     rec_.finish(t_, q_, qd_, Phase::contact, load_);
     done_ = true;
   }
 
   void fail_stick(const SlipDecision& s) {
-    rec_.fail("stick", t_,
-              "the tip sticks (V_t = 0 and the tangential force needed, " + fmt(s.stick_tangential) +
-                  " N, is within the friction cone μF_n = " +
-                  fmt(effective_friction(friction_, tip_) * std::abs(s.stick_normal)) + " N)");
+    rec_.fail("stick", t_, detail::stick_message(s, effective_friction(friction_, tip_)));
     rec_.finish(t_, q_, qd_, Phase::stick, load_);
     done_ = true;
   }

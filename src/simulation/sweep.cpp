@@ -1,6 +1,7 @@
 #include "rotbeam/sweep.hpp"
 
 #include "rotbeam/atomic_file.hpp"
+#include "rotbeam/detail/csv.hpp"
 #include "rotbeam/pass.hpp"
 #include "rotbeam/pass_output.hpp"
 
@@ -13,6 +14,8 @@
 #include <thread>
 
 namespace rotbeam {
+
+using detail::csv_field;
 
 namespace {
 
@@ -49,13 +52,6 @@ const char* kMetrics[] = {"impacts", "contact_episodes", "first_impact_deg", "la
                           "contact_time_s", "peak_normal_force_n", "mean_normal_force_n", "normal_impulse_n_s",
                           "friction_work_j", "max_tip_deflection_ratio", "energy_audit_residual", "steps",
                           "rhs_evaluations", "wall_time_s"};
-
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += (c == '"') ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
 
 }  // namespace
 
@@ -247,15 +243,23 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
 
 std::string sweep_csv(const SweepReport& report) {
   std::string out = "case,folder";
-  for (const SweepAxis& a : report.axes) out += "," + csv_field(a.key);
+  for (const SweepAxis& a : report.axes) {
+    out += ',';
+    out += csv_field(a.key);
+  }
   out += ",status";
   for (const char* m : kMetrics) out += std::string(",") + m;
   out += ",message\n";
   for (std::size_t i = 0; i < report.cases.size(); ++i) {
     const SweepCase& c = report.cases[i];
     const SweepCaseResult& r = report.results[i];
-    out += std::to_string(c.index + 1) + "," + c.folder;
-    for (const std::string& v : c.values) out += "," + csv_field(v);
+    out += std::to_string(c.index + 1);
+    out += ',';
+    out += c.folder;
+    for (const std::string& v : c.values) {
+      out += ',';
+      out += csv_field(v);
+    }
     out += std::string(",") + sweep_status_name(r.status);
     for (const char* m : kMetrics) {
       out += ",";
@@ -265,7 +269,9 @@ std::string sweep_csv(const SweepReport& report) {
         out += buf;
       }
     }
-    out += "," + csv_field(r.message) + "\n";
+    out += ',';
+    out += csv_field(r.message);
+    out += '\n';
   }
   return out;
 }

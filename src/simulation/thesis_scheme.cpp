@@ -13,6 +13,7 @@
 #include "rotbeam/free_flight.hpp"
 #include "rotbeam/pass.hpp"
 #include "rotbeam/pass_recorder.hpp"
+#include "rotbeam/detail/diagnostics.hpp"
 
 #include <boost/math/tools/toms748_solve.hpp>
 #include <chrono>
@@ -25,12 +26,7 @@ namespace {
 
 constexpr double kSurfaceTolerance = 1e-9;  // [m]
 
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
+using detail::short_number;
 
 class ThesisScheme {
 public:
@@ -166,7 +162,7 @@ private:
     const SlipDecision slip = decide_slip(model_, friction_, tip_, ws_);
     if (slip.kind == SlipDecision::Kind::stick) return fail_stick(slip);
     if (slip.kind == SlipDecision::Kind::separate) {
-      rec_.event(t_, q_, "lift_off", "λ with the tip locked = " + fmt(slip.stick_normal) + " N > 0: no sustained contact");
+      rec_.event(t_, q_, "lift_off", detail::lift_off_message(slip.stick_normal));
       return separate(t_, q_, qd_);
     }
     slip_ = slip.direction;
@@ -249,7 +245,7 @@ private:
       if (!converged || !xn_.allFinite() || !un_.allFinite()) {
         rec_.fail("corrector", t_,
                   "the corrector did not converge in " + std::to_string(opt_.corrector_max_iterations) +
-                      " iterations (last λ = " + fmt(lambda_n) + " N, step " + fmt(h) + " s)");
+                      " iterations (last λ = " + short_number(lambda_n) + " N, step " + short_number(h) + " s)");
         rec_.finish(t_, q_, qd_, Phase::contact, load_prev_);
         return Next::done;
       }
@@ -313,8 +309,8 @@ private:
       // Gaps within 1 nm are the corrector's round-off (C is zeroed by one Newton step), not a crossing.
       if (deepest > kSurfaceTolerance) {
         rec_.event(t_, q_, "tip_distance_rule",
-                   "after separation the free tip stayed beyond the surface for " + fmt(t_ - t0) + " s (deepest " +
-                       fmt(deepest) + " m); free steps until clear (thesis Step 5a)");
+                   "after separation the free tip stayed beyond the surface for " + short_number(t_ - t0) + " s (deepest " +
+                       short_number(deepest) + " m); free steps until clear (thesis Step 5a)");
         rec_.warn("the thesis's tip-distance rule (Step 5a) was applied: the free tip crossed the surface after a separation");
       }
     }
@@ -340,20 +336,14 @@ private:
   }
 
   Next fail_painleve(double a, double b, double c) {
-    rec_.fail("painleve", t_,
-              "Painlevé's paradox: a λ + b|λ| = c has " +
-                  std::string(c > 0 ? "two admissible solutions" : "no admissible solution") + " (a = " + fmt(a) + " 1/kg, b = " + fmt(b) + " 1/kg, c = " + fmt(c) +
-                  " m/s², a − b = " + fmt(a - b) + ")");
+    rec_.fail("painleve", t_, detail::painleve_message(a, b, c));
     rec_.finish(t_, q_, qd_, Phase::contact, load_prev_);
     return Next::done;
   }
 
   Next fail_stick(const SlipDecision& s) {
     rec_.fail("stick", t_,
-              "the tip sticks (V_t = 0 and the tangential force needed, " + fmt(s.stick_tangential) +
-                  " N, is within the friction cone μF_n = " +
-                  fmt(effective_friction(friction_, tip_) * std::abs(s.stick_normal)) +
-                  " N); the thesis scheme cannot hold a stick");
+              detail::stick_message(s, effective_friction(friction_, tip_)) + "; the thesis scheme cannot hold a stick");
     rec_.finish(t_, q_, qd_, Phase::stick, load_prev_);
     return Next::done;
   }

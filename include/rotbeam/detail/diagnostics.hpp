@@ -1,0 +1,39 @@
+// Wording of the diagnostics both pass schemes give (internal).
+#pragma once
+
+#include "rotbeam/contact.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+namespace rotbeam::detail {
+
+/// A number with 6 significant digits, for messages.
+inline std::string short_number(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
+/// Painlevé's paradox for a λ + b|λ| = c (SPEC §4): two solutions for c > 0, none for c < 0.
+inline std::string painleve_message(double a, double b, double c) {
+  return "Painlevé's paradox: a λ + b|λ| = c has " +
+         std::string(c > 0 ? "two admissible solutions" : "no admissible solution") + " (a = " + short_number(a) +
+         " 1/kg, b = " + short_number(b) + " 1/kg, c = " + short_number(c) + " m/s², a − b = " + short_number(a - b) +
+         ")";
+}
+
+/// A stick: V_t = 0 and the tangential force needed lies inside the friction cone.
+inline std::string stick_message(const SlipDecision& s, double mu_eff) {
+  return "the tip sticks (V_t = 0 and the tangential force needed, " + short_number(s.stick_tangential) +
+         " N, is within the friction cone μF_n = " + short_number(mu_eff * std::abs(s.stick_normal)) + " N)";
+}
+
+/// A touch after which the tip leaves at once (the locked-tip normal force is positive).
+inline std::string lift_off_message(double locked_lambda) {
+  return "λ with the tip locked = " + short_number(locked_lambda) + " N > 0: no sustained contact";
+}
+
+}  // namespace rotbeam::detail
