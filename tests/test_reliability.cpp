@@ -183,10 +183,11 @@ TEST(Reliability, NonFiniteStateIsDiagnosed) {
 }
 
 TEST(Reliability, InterruptKeepsACompleteRecord) {
-  // SIGINT 0.3 s into a ~1 s run: exit 130, three complete files, failure.kind = "interrupted".
+  // SIGINT 0.3 s into a run of several seconds (12 modes, thesis scheme, 0.5 µs free steps): exit
+  // 130, three complete files, failure.kind = "interrupted".
   const std::string out = fresh_dir("interrupt");
   const std::string cmd = "sh -c '" + std::string(ROTBEAM_CLI) +
-                          " run --set beam.modes=10 --set simulation.scheme=thesis -o " + out +
+                          " run --set beam.modes=12 --set simulation.scheme=thesis --set simulation.free_step_s=5e-7 -o " + out +
                           " >/dev/null 2>&1 & pid=$!; sleep 0.3; kill -INT $pid; wait $pid; exit $?'";
   const int st = std::system(cmd.c_str());
   ASSERT_TRUE(WIFEXITED(st));

@@ -38,7 +38,10 @@ def test_an_interrupted_sweep_resumes(tmp_path):
     args = [CLI, "sweep", "--vary", "beam.modes=8,9,10", "--vary", "surface.friction=0.1,0.3,0.5,0.7",
             "--set", "output.interval_s=1e-3", "-o", str(out), "--jobs", "2"]
     proc = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    time.sleep(2.0)
+    # Interrupt once at least one case has finished (whatever the machine's speed).
+    deadline = time.time() + 120
+    while time.time() < deadline and not list(out.glob("case-*/summary.json")):
+        time.sleep(0.05)
     proc.send_signal(signal.SIGINT)
     _, err = proc.communicate(timeout=120)
     assert proc.returncode == 130, err
