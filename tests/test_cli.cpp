@@ -202,3 +202,12 @@ TEST(Cli, ConvergePrintsItsTableAndJson) {
   EXPECT_TRUE(doc["runs"][2]["metrics"].contains("normal_impulse_n_s"));
   EXPECT_NE(run("converge --rtols 1e-8,abc").status, 0);
 }
+
+TEST(Cli, WarningsAreEventsToo) {
+  // SPEC §7: warnings are events; the base case passes the validity threshold (|y_t|/L > 0.1).
+  const std::string dir = ::testing::TempDir() + "rotbeam_run_warn_" + std::to_string(getpid());
+  ASSERT_EQ(run("run --set output.interval_s=1e-3 -o " + dir).status, 0);
+  const std::string events = slurp(dir + "/events.csv");
+  EXPECT_NE(events.find(",warning,"), std::string::npos) << events.substr(0, 500);
+  EXPECT_NE(events.find("tip deflection exceeds 0.1"), std::string::npos);
+}

@@ -45,7 +45,8 @@ public:
   void contact_start(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const std::string& detail);
   void contact_end(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const std::string& detail);
   void event(double t, const Eigen::VectorXd& q, const std::string& kind, const std::string& detail);
-  void warn(const std::string& message);
+  /// A warning: kept once in the summary and recorded as an event at t.
+  void warn(double t, const std::string& message);
   void fail(const std::string& kind, double t, const std::string& message);
   void finish(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Phase phase, const ContactLoad& load);
 

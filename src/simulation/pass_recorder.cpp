@@ -97,7 +97,6 @@ double PassRecorder::hub_torque(double t, const Eigen::VectorXd& q, const Eigen:
 }
 
 void PassRecorder::track(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
-  (void)t;
   (void)qd;
   const double ratio = std::abs(model_.integrals->s_tip.dot(q)) / model_.length;
   if (ratio > result_.summary.max_tip_deflection_ratio) result_.summary.max_tip_deflection_ratio = ratio;
@@ -110,7 +109,7 @@ void PassRecorder::track(double t, const Eigen::VectorXd& q, const Eigen::Vector
     std::ostringstream s;
     s << "tip deflection exceeds " << options_.deflection_warning_ratio
       << " of the length: the quadratic foreshortening model is at the edge of its validity (SPEC §10)";
-    warn(s.str());
+    warn(t, s.str());
   }
 }
 
@@ -245,10 +244,16 @@ void PassRecorder::event(double t, const Eigen::VectorXd& q, const std::string& 
   result_.events.push_back(e);
 }
 
-void PassRecorder::warn(const std::string& message) {
+void PassRecorder::warn(double t, const std::string& message) {
   for (const std::string& w : result_.summary.warnings)
     if (w == message) return;
   result_.summary.warnings.push_back(message);
+  PassEvent e;
+  e.t = t;
+  e.theta = model_.theta(t);
+  e.kind = "warning";
+  e.detail = message;
+  result_.events.push_back(e);
 }
 
 void PassRecorder::fail(const std::string& kind, double t, const std::string& message) {
@@ -269,7 +274,7 @@ void PassRecorder::fail(const std::string& kind, double t, const std::string& me
 void PassRecorder::finish(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Phase phase,
                           const ContactLoad& load) {
   if (in_episode_) {
-    if (!result_.failure) warn("the tip is still in contact at the end angle");
+    if (!result_.failure) warn(t, "the tip is still in contact at the end angle");
     contact_end(t, q, qd, "end of the pass");
   } else {
     sample(t, q, qd, phase, load);

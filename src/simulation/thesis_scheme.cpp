@@ -311,7 +311,7 @@ private:
         rec_.event(t_, q_, "tip_distance_rule",
                    "after separation the free tip stayed beyond the surface for " + short_number(t_ - t0) + " s (deepest " +
                        short_number(deepest) + " m); free steps until clear (thesis Step 5a)");
-        rec_.warn("the thesis's tip-distance rule (Step 5a) was applied: the free tip crossed the surface after a separation");
+        rec_.warn(t_, "the thesis's tip-distance rule (Step 5a) was applied: the free tip crossed the surface after a separation");
       }
     }
     if (t_ >= t_end_) {
