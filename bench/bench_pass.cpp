@@ -3,6 +3,7 @@
 // Table 5-2 grid with the adaptive scheme spread over all cores.
 #include "rotbeam/config.hpp"
 #include "rotbeam/pass.hpp"
+#include "table_5_2.hpp"
 
 #include <atomic>
 #include <benchmark/benchmark.h>
@@ -12,17 +13,18 @@ using namespace rotbeam;
 
 namespace {
 
-void BM_ThesisPass(benchmark::State& state) {
+// One pass of the base case at (modes, rpm) = state.range(0, 1), history every 100 µs.
+template <class RunPass>
+void pass_benchmark(benchmark::State& state, PassOptions opt, RunPass run_pass) {
   PhysicalParameters p;
   p.modes = static_cast<int>(state.range(0));
   p.speed_rpm = static_cast<double>(state.range(1));
   const Model model = make_model(p);
   InitialConditions ic;
-  PassOptions opt;
   opt.output_interval_s = 1e-4;
   PassSummary s;
   for (auto _ : state) {
-    const PassResult r = run_thesis_pass(model, ImpactLaw{}, FrictionModel{p.friction, false}, ic, opt);
+    const PassResult r = run_pass(model, ImpactLaw{}, FrictionModel{p.friction, false}, ic, opt);
     s = r.summary;
     benchmark::DoNotOptimize(r.history.data());
   }
@@ -31,44 +33,22 @@ void BM_ThesisPass(benchmark::State& state) {
   state.counters["impacts"] = s.impacts;
   state.counters["contact_episodes"] = s.contact_episodes;
 }
+
+void BM_ThesisPass(benchmark::State& state) { pass_benchmark(state, PassOptions{}, run_thesis_pass); }
 BENCHMARK(BM_ThesisPass)->Args({5, 550})->Args({5, 3000})->Args({10, 550})->Args({10, 3000})->Unit(benchmark::kMillisecond);
 
 void BM_AdaptivePass(benchmark::State& state) {
-  PhysicalParameters p;
-  p.modes = static_cast<int>(state.range(0));
-  p.speed_rpm = static_cast<double>(state.range(1));
-  const Model model = make_model(p);
-  InitialConditions ic;
   PassOptions opt;
   opt.rtol = 1e-8;
-  opt.output_interval_s = 1e-4;
-  PassSummary s;
-  for (auto _ : state) {
-    const PassResult r = run_adaptive_pass(model, ImpactLaw{}, FrictionModel{p.friction, false}, ic, opt);
-    s = r.summary;
-    benchmark::DoNotOptimize(r.history.data());
-  }
-  state.counters["steps"] = static_cast<double>(s.steps);
-  state.counters["rhs_evaluations"] = static_cast<double>(s.rhs_evaluations);
-  state.counters["impacts"] = s.impacts;
-  state.counters["contact_episodes"] = s.contact_episodes;
+  pass_benchmark(state, opt, run_adaptive_pass);
 }
 BENCHMARK(BM_AdaptivePass)->Args({5, 550})->Args({5, 3000})->Args({10, 550})->Args({10, 3000})->Unit(benchmark::kMillisecond);
 
 // The 80 Table 5-2 cases (default configuration otherwise: adaptive, rtol 1e-9), on `threads` threads.
 void BM_Table52Grid(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(0));
-  std::vector<Config> cases;
-  for (double rpm : {550.0, 1000.0, 2000.0, 3000.0})
-    for (double depth : {0.02, 0.04, 0.06, 0.08})
-      for (double mu : {0.1, 0.3, 0.4, 0.5, 0.7}) {
-        Config c = load_config_string("", {});
-        c.physical.speed_rpm = rpm;
-        c.physical.depth_fraction = depth;
-        c.physical.friction = mu;
-        c.output_interval_s = 1e30;
-        cases.push_back(c);
-      }
+  std::vector<Config> cases = table_5_2_cases();
+  for (Config& c : cases) c.output_interval_s = 1e30;
   for (auto _ : state) {
     std::atomic<std::size_t> next{0};
     auto worker = [&] {

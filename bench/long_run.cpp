@@ -5,6 +5,7 @@
 #include "rotbeam/config.hpp"
 #include "rotbeam/pass_output.hpp"
 #include "rotbeam/process_memory.hpp"
+#include "table_5_2.hpp"
 
 #include <atomic>
 #include <chrono>
@@ -18,16 +19,7 @@ using namespace rotbeam;
 int main(int argc, char** argv) {
   const int passes = argc > 1 ? std::atoi(argv[1]) : 1000;
   const int threads = argc > 2 ? std::atoi(argv[2]) : 2;
-  std::vector<Config> cases;
-  for (double rpm : {550.0, 1000.0, 2000.0, 3000.0})
-    for (double depth : {0.02, 0.04, 0.06, 0.08})
-      for (double mu : {0.1, 0.3, 0.4, 0.5, 0.7}) {
-        Config c = load_config_string("", {});
-        c.physical.speed_rpm = rpm;
-        c.physical.depth_fraction = depth;
-        c.physical.friction = mu;
-        cases.push_back(c);
-      }
+  const std::vector<Config> cases = table_5_2_cases();
   auto fingerprint = [](const PassResult& r, const Config& c) {
     nlohmann::json j = summary_json(r, c);
     j.erase("wall_time_s");

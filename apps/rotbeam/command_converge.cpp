@@ -3,6 +3,7 @@
 #include "common.hpp"
 
 #include "rotbeam/convergence.hpp"
+#include "rotbeam/detail/parse.hpp"
 
 #include <cmath>
 #include <iostream>
@@ -24,14 +25,8 @@ std::vector<T> parse_list(const std::string& text, const std::string& option) {
   std::vector<T> out;
   std::stringstream ss(text);
   for (std::string item; std::getline(ss, item, ',');) {
-    std::size_t used = 0;
     double v = 0;
-    try {
-      v = std::stod(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != item.size() || !(v > 0) || !std::isfinite(v))
+    if (!detail::parse_finite_number(item, v) || !(v > 0))
       throw ConfigError(option + " " + text + ": '" + item + "' is not a positive number");
     if constexpr (std::is_integral_v<T>) {
       if (v != std::floor(v) || v > kMaxModes) throw ConfigError(option + " " + text + ": '" + item + "' must be a whole number of modes up to " + std::to_string(kMaxModes));

@@ -3,6 +3,7 @@
 #include "common.hpp"
 
 #include "rotbeam/atomic_file.hpp"
+#include "rotbeam/detail/parse.hpp"
 #include "python_bridge.hpp"
 #include "rotbeam/modal_analysis.hpp"
 
@@ -32,14 +33,8 @@ std::vector<double> parse_speeds(const std::string& text) {
   std::stringstream ss(text);
   for (std::string part; std::getline(ss, part, ':');) parts.push_back(part);
   auto number = [&](const std::string& s) {
-    std::size_t used = 0;
     double v = 0;
-    try {
-      v = std::stod(s, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != s.size() || s.empty() || !std::isfinite(v)) throw ConfigError(what + "'" + s + "' is not a number");
+    if (!detail::parse_finite_number(s, v)) throw ConfigError(what + "'" + s + "' is not a number");
     if (v < 0) throw ConfigError(what + "speeds must be >= 0 rpm");
     return v;
   };

@@ -5,6 +5,8 @@
 #include "rotbeam/energy.hpp"
 #include "rotbeam/pass.hpp"
 
+#include <chrono>
+
 namespace rotbeam {
 
 /// The contact force state on an accepted point (zero in free flight).
@@ -54,6 +56,8 @@ public:
   /// True when the pass must stop now: an interrupt was requested or the validity limit was
   /// breached with deflection_limit_is_error (the failure is recorded the first time it is seen).
   bool stop_requested(double t);
+  /// True (with an `impacts` failure recorded) when the pass already had options.max_impacts impacts.
+  bool impacts_exhausted(double t);
   long& steps() { return result_.summary.steps; }
   long& rhs() { return result_.summary.rhs_evaluations; }
 
@@ -81,5 +85,16 @@ private:
   bool validity_breached_ = false;
   double validity_ratio_ = 0;
 };
+
+/// Runs a scheme into a fresh PassResult named `scheme` and records its wall time.
+template <class RunScheme>
+PassResult timed_pass(const char* scheme, RunScheme&& run) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  PassResult result;
+  result.summary.scheme = scheme;
+  run(result);
+  result.summary.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return result;
+}
 
 }  // namespace rotbeam

@@ -148,6 +148,14 @@ void PassRecorder::start(double t, const Eigen::VectorXd& q, const Eigen::Vector
   sample(t, q, qd, Phase::free, ContactLoad{});
 }
 
+bool PassRecorder::impacts_exhausted(double t) {
+  if (result_.summary.impacts < options_.max_impacts) return false;
+  fail("impacts", t,
+       "more than " + std::to_string(options_.max_impacts) +
+           " impacts in one pass: impacts accumulate (raise impact.plastic_below_m_s)");
+  return true;
+}
+
 void PassRecorder::accept(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Phase phase,
                           const ContactLoad& begin, const ContactLoad& end, bool force_sample) {
   const double dt = t - last_t_;

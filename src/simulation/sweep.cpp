@@ -2,6 +2,7 @@
 
 #include "rotbeam/atomic_file.hpp"
 #include "rotbeam/detail/csv.hpp"
+#include "rotbeam/detail/parse.hpp"
 #include "rotbeam/pass.hpp"
 #include "rotbeam/pass_output.hpp"
 
@@ -80,15 +81,8 @@ SweepAxis parse_sweep_axis(const std::string& spec) {
     for (std::size_t p; (p = rest.find(':', start)) != std::string::npos; start = p + 1) parts.push_back(rest.substr(start, p - start));
     parts.push_back(rest.substr(start));
     auto number = [&](const std::string& s) {
-      std::size_t used = 0;
       double v = 0;
-      try {
-        v = std::stod(s, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used == 0 || used != s.size() || !std::isfinite(v))
-        throw ConfigError("--vary " + spec + ": '" + s + "' is not a number");
+      if (!detail::parse_finite_number(s, v)) throw ConfigError("--vary " + spec + ": '" + s + "' is not a number");
       return v;
     };
     if (parts.size() != 3) throw ConfigError("--vary " + spec + ": a range is A:B:N");

@@ -16,7 +16,6 @@
 #include "rotbeam/detail/diagnostics.hpp"
 
 #include <boost/math/tools/toms748_solve.hpp>
-#include <chrono>
 #include <cmath>
 #include <sstream>
 
@@ -137,10 +136,7 @@ private:
 
   // Momentum-balance impact at (t_, q_, qd_). Sets after_impact_. False on failure.
   bool impact() {
-    if (result_.summary.impacts >= opt_.max_impacts) {
-      rec_.fail("impacts", t_,
-                "more than " + std::to_string(opt_.max_impacts) +
-                    " impacts in one pass: impacts accumulate (raise impact.plastic_below_m_s)");
+    if (rec_.impacts_exhausted(t_)) {
       rec_.finish(t_, q_, qd_, Phase::free, {});
       return false;
     }
@@ -369,15 +365,10 @@ private:
 
 PassResult run_thesis_pass(const Model& model, const ImpactLaw& law, const FrictionModel& friction,
                            const InitialConditions& initial, const PassOptions& options) {
-  const auto wall0 = std::chrono::steady_clock::now();
-  PassResult result;
-  result.summary.scheme = "thesis";
-  {
+  return timed_pass("thesis", [&](PassResult& result) {
     ThesisScheme scheme(model, law, friction, options, result);
     scheme.run(initial);
-  }
-  result.summary.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  return result;
+  });
 }
 
 }  // namespace rotbeam
