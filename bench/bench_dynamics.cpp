@@ -1,8 +1,9 @@
 // Micro-benchmarks of the model core: q̈(q, q̇) for several mode counts, the modal integrals, and
 // one whole free pass (θ0 → +90°) with the thesis's fixed-step RK5.
 #include "rotbeam/dynamics.hpp"
-#include "rotbeam/free_flight.hpp"
 #include "rotbeam/modal_integrals.hpp"
+#include "rotbeam/plane.hpp"
+#include "rotbeam/stepper.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -20,17 +21,17 @@ double flops_per_acceleration(int n) {
   return 2 * fma + nn * nn * nn / 3 + 2 * nn * nn;
 }
 
-Model model_with(int n, double rpm = 550.0) {
-  PhysicalParameters p;
+ForeshorteningBeam model_with(int n, double rpm = 550.0) {
+  BeamParameters p;
   p.modes = n;
   p.speed_rpm = rpm;
-  return make_model(p);
+  return make_beam(p);
 }
 
 void BM_Acceleration(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
-  const Model model = model_with(n);
-  Workspace ws(n);
+  const ForeshorteningBeam model = model_with(n);
+  ForeshorteningWorkspace ws(n);
   Eigen::VectorXd q = Eigen::VectorXd::LinSpaced(n, 1e-2, 1e-4), v = Eigen::VectorXd::LinSpaced(n, 2.0, 0.1), a(n);
   for (auto _ : state) {
     acceleration(model, q, v, nullptr, ws, a);
@@ -57,20 +58,22 @@ void BM_FreePass(benchmark::State& state) {
   // θ0 = −90° → +90° with q̇(0) = (2, 0, …) m/s, h = 1e-6 s, surface ignored.
   const int n = static_cast<int>(state.range(0));
   const double rpm = static_cast<double>(state.range(1));
-  const Model model = model_with(n, rpm);
-  Workspace ws(n);
-  Eigen::VectorXd q0 = Eigen::VectorXd::Zero(n), v0 = Eigen::VectorXd::Zero(n);
-  v0[0] = 2.0;
-  FreeFlightOptions opt;
-  opt.step_s = 1e-6;
-  opt.end_time_s = model.time_at(M_PI / 2);
-  opt.stop_at_contact = false;
+  const ForeshorteningBeam model = model_with(n, rpm);
+  const Plane far(1.0);  // out of reach
+  PassOptions opt;
+  opt.scheme = Scheme::thesis;
+  opt.free_step_s = 1e-6;
+  const double t_end = model.time_at(M_PI / 2);
   long steps = 0, rhs = 0;
   for (auto _ : state) {
-    const FreeFlightResult r = integrate_free_flight(model, 0.0, q0, v0, opt, ws);
-    steps = r.steps;
-    rhs = r.rhs_evaluations;
-    benchmark::DoNotOptimize(r.q.data());
+    const auto stepper = make_thesis_stepper({model, far, {}}, opt);
+    FilamentState s(n);
+    s.qd[0] = 2.0;
+    stepper->begin_free(s, false);
+    while (s.t < t_end) stepper->step(s, t_end);
+    steps = stepper->statistics().steps;
+    rhs = stepper->statistics().rhs_evaluations;
+    benchmark::DoNotOptimize(s.q.data());
   }
   state.counters["steps"] = static_cast<double>(steps);
   state.counters["rhs_evaluations"] = static_cast<double>(rhs);

@@ -2,7 +2,7 @@
 // Reports the resident memory as the passes accumulate and checks that every pass gives exactly
 // the summary of the first pass of the same case.
 //   long_run [N=1000] [T=2]
-#include "rotbeam/config.hpp"
+#include "rotbeam/case.hpp"
 #include "rotbeam/pass_output.hpp"
 #include "rotbeam/process_memory.hpp"
 #include "table_5_2.hpp"
@@ -20,8 +20,8 @@ int main(int argc, char** argv) {
   const int passes = argc > 1 ? std::atoi(argv[1]) : 1000;
   const int threads = argc > 2 ? std::atoi(argv[2]) : 2;
   const std::vector<Config> cases = table_5_2_cases();
-  auto fingerprint = [](const PassResult& r, const Config& c) {
-    nlohmann::json j = summary_json(r, c);
+  auto fingerprint = [](const PassResult& r, const Config& c, const Surface& surface) {
+    nlohmann::json j = summary_json(r, c, surface);
     j.erase("wall_time_s");
     return j.dump() + std::to_string(r.history.size()) + std::to_string(r.history.back().jacobi);
   };
@@ -34,8 +34,9 @@ int main(int argc, char** argv) {
   auto worker = [&] {
     for (int i; (i = next.fetch_add(1)) < passes;) {
       const std::size_t k = static_cast<std::size_t>(i) % cases.size();
-      const PassResult r = cases[k].run_pass();
-      const std::string f = fingerprint(r, cases[k]);
+      const Case cs = build_case(cases[k]);
+      const PassResult r = run_case(cs);
+      const std::string f = fingerprint(r, cases[k], *cs.surface);
       std::lock_guard<std::mutex> lock(mutex);
       if (reference[k].empty())
         reference[k] = f;

@@ -12,9 +12,9 @@ inline std::vector<rotbeam::Config> table_5_2_cases() {
     for (double depth : {0.02, 0.04, 0.06, 0.08})
       for (double mu : {0.1, 0.3, 0.4, 0.5, 0.7}) {
         rotbeam::Config c = rotbeam::load_config_string("", {});
-        c.physical.speed_rpm = rpm;
-        c.physical.depth_fraction = depth;
-        c.physical.friction = mu;
+        c.beam.speed_rpm = rpm;
+        c.surface.depth_fraction = depth;
+        c.contact.friction.mu = mu;
         cases.push_back(c);
       }
   return cases;

@@ -2,7 +2,7 @@
 // Input: text whose lines starting with "--set " are overrides (the rest of the line), every other
 // line is part of the TOML document. Bad input must end in rotbeam::ConfigError; any other
 // exception, crash or sanitizer report is a bug.
-#include "rotbeam/config.hpp"
+#include "rotbeam/case.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -24,8 +24,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {
     const rotbeam::Config c = rotbeam::load_config_string(toml, overrides);
     (void)c.to_json().dump();
-    (void)c.initial_conditions();
-    (void)c.pass_options();
+    (void)rotbeam::build_case(c);
   } catch (const rotbeam::ConfigError&) {
   }
   return 0;

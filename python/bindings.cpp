@@ -1,6 +1,6 @@
 // rotbeam._core: the C++ library's jobs for Python, with the GIL released while they compute.
 // Configuration errors raise rotbeam._core.ConfigError (a ValueError) with the CLI's message.
-#include "rotbeam/config.hpp"
+#include "rotbeam/case.hpp"
 #include "rotbeam/impact_output.hpp"
 #include "rotbeam/modal_analysis.hpp"
 #include "rotbeam/pass_output.hpp"
@@ -64,7 +64,7 @@ py::list event_dicts(const PassResult& r) {
     py::dict d;
     d["t_s"] = e.t;
     d["theta_deg"] = e.theta * 180.0 / M_PI;
-    d["kind"] = e.kind;
+    d["kind"] = event_name(e.kind);
     d["y_tip_m"] = e.y_tip;
     d["vx_before_m_s"] = e.vx_before;
     d["vx_after_m_s"] = e.vx_after;
@@ -78,13 +78,14 @@ py::list event_dicts(const PassResult& r) {
 
 py::tuple run(const std::optional<std::string>& path, const std::vector<std::string>& overrides) {
   const Config config = load(path, overrides);
+  const Case c = build_case(config);
   PassResult result;
   {
     py::gil_scoped_release release;
-    result = config.run_pass();
+    result = run_case(c);
   }
-  const nlohmann::json summary = summary_json(result, config);
-  return py::make_tuple(from_json(summary), history_arrays(result, config.physical.modes), event_dicts(result));
+  const nlohmann::json summary = summary_json(result, config, *c.surface);
+  return py::make_tuple(from_json(summary), history_arrays(result, config.beam.modes), event_dicts(result));
 }
 
 py::object impact(const std::optional<std::string>& path, const std::vector<std::string>& overrides) {
@@ -92,7 +93,7 @@ py::object impact(const std::optional<std::string>& path, const std::vector<std:
   FirstImpactResult r;
   {
     py::gil_scoped_release release;
-    r = run_first_impact(config);
+    r = run_first_impact(build_case(config));
   }
   if (!r.found) return py::none();
   return from_json(impact_json(r, config));
@@ -102,13 +103,13 @@ py::tuple modes(const std::optional<std::string>& path, const std::vector<std::s
                 const std::vector<double>& requested) {
   const Config config = load(path, overrides);
   const std::vector<double> speeds_rpm =
-      requested.empty() ? default_mode_speeds_rpm(config.physical.speed_rpm) : requested;
+      requested.empty() ? default_mode_speeds_rpm(config.beam.speed_rpm) : requested;
   for (double s : speeds_rpm)
     if (!(s >= 0.0) || !std::isfinite(s)) throw ConfigError("speeds_rpm: " + std::to_string(s) + " must be >= 0");
   Eigen::MatrixXd f;
   {
     py::gil_scoped_release release;
-    f = frequencies_versus_speed(config.physical, speeds_rpm);
+    f = frequencies_versus_speed(config.beam, speeds_rpm);
   }
   py::array_t<double> freq({static_cast<py::ssize_t>(f.rows()), static_cast<py::ssize_t>(f.cols())});
   auto m = freq.mutable_unchecked<2>();

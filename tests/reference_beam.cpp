@@ -30,7 +30,7 @@ void gauss_nodes(double a, double b, int panels, std::vector<double>& x, std::ve
 }
 }  // namespace
 
-ReferenceBeam::ReferenceBeam(const Model& model, int panels) : model_(model) {
+ReferenceBeam::ReferenceBeam(const ForeshorteningBeam& model, int panels) : model_(model) {
   const int n = model.n;
   const ModalBasis& basis = model.integrals->basis;
   gauss_nodes(0.0, 1.0, panels, xi_, w_);
@@ -100,7 +100,7 @@ double ReferenceBeam::angular_momentum(const Eigen::VectorXd& q, const Eigen::Ve
   return (2.0 * t0(q) / (w * w)) * w + t1(q, v) / w;
 }
 
-void random_state(const Model& model, unsigned seed, double tip_deflection_m, double speed, Eigen::VectorXd& q,
+void random_state(const ForeshorteningBeam& model, unsigned seed, double tip_deflection_m, double speed, Eigen::VectorXd& q,
                   Eigen::VectorXd& v) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);

@@ -4,7 +4,7 @@
 // SPEC §3's definitions. Nothing here uses the library's precomputed tensors or contractions.
 #pragma once
 
-#include "rotbeam/model.hpp"
+#include "rotbeam/foreshortening_beam.hpp"
 
 #include <Eigen/Core>
 #include <vector>
@@ -13,7 +13,7 @@ namespace rotbeam::testing {
 
 class ReferenceBeam {
 public:
-  ReferenceBeam(const Model& model, int panels);
+  ReferenceBeam(const ForeshorteningBeam& model, int panels);
   double t0(const Eigen::VectorXd& q) const;                             // ½ω² ∫ (x² + y²) dm
   double t1(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const;   // ω ∫ (x ẏ − y ẋ) dm
   double t2(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const;   // ½ ∫ (ẋ² + ẏ²) dm
@@ -24,7 +24,7 @@ public:
   double angular_momentum(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const;
 
 private:
-  const Model& model_;
+  const ForeshorteningBeam& model_;
   std::vector<double> w_;                // weights on [0, 1]
   std::vector<double> xi_;               // nodes
   std::vector<Eigen::VectorXd> s_, d2s_; // S, S'' at the nodes
@@ -33,7 +33,7 @@ private:
 
 /// A deterministic random state with tip deflection |y_t| = `tip_deflection_m` and modal
 /// velocities of order `speed` m/s, with a decaying spectrum over the modes.
-void random_state(const Model& model, unsigned seed, double tip_deflection_m, double speed, Eigen::VectorXd& q,
+void random_state(const ForeshorteningBeam& model, unsigned seed, double tip_deflection_m, double speed, Eigen::VectorXd& q,
                   Eigen::VectorXd& v);
 
 }  // namespace rotbeam::testing

@@ -1,9 +1,9 @@
 // The adaptive event-driven scheme (SPEC §6): convergence in tolerance, event location, the Jacobi
 // integral, and the thesis scheme's error against it.
-#include "rotbeam/config.hpp"
+#include "rotbeam/case.hpp"
 #include "rotbeam/convergence.hpp"
 #include "rotbeam/energy.hpp"
-#include "rotbeam/pass.hpp"
+#include "rotbeam/plane.hpp"
 
 #include <cmath>
 #include <gtest/gtest.h>
@@ -13,9 +13,9 @@ using namespace rotbeam;
 namespace {
 PassResult adaptive(double rtol, double interval = 1e30) {
   Config c = load_config_string("", {});
-  c.rtol = rtol;
-  c.output_interval_s = interval;
-  return c.run_pass();
+  c.simulation.rtol = rtol;
+  c.simulation.output_interval_s = interval;
+  return run_case(build_case(c));
 }
 }  // namespace
 
@@ -61,10 +61,10 @@ TEST(Adaptive, JacobiIntegralOverAFreePassAtTightTolerance) {
   // θ0 → +90° with q̇(0) = (2, 0, 0, 0, 0) m/s, no surface within reach, rtol = atol-scaled 1e-12:
   // max |h(t) − h(0)| ≤ 1e-10 |h(0)|.
   for (double rpm : {550.0, 3000.0}) {
-    PhysicalParameters p;
+    BeamParameters p;
     p.speed_rpm = rpm;
-    Model model = make_model(p);
-    model.surface_distance = 1.0;  // 1 m away: the tip never reaches it
+    const ForeshorteningBeam model = make_beam(p);
+    const Plane plane(1.0);  // 1 m away: the tip never reaches it
     InitialConditions ic;
     ic.rigid_start = false;
     ic.q0 = Eigen::VectorXd::Zero(5);
@@ -74,7 +74,7 @@ TEST(Adaptive, JacobiIntegralOverAFreePassAtTightTolerance) {
     opt.rtol = 1e-12;
     opt.atol = 1e-15;
     opt.output_interval_s = 1e-4;
-    const PassResult r = run_adaptive_pass(model, ImpactLaw{}, FrictionModel{}, ic, opt);
+    const PassResult r = run_pass({model, plane, {}}, ic, opt);
     ASSERT_FALSE(r.failure);
     EXPECT_EQ(r.summary.impacts, 0);
     const double h0 = r.history.front().jacobi;
@@ -116,10 +116,10 @@ TEST(Adaptive, MatchesTheIndependentRunsOfSpec10) {
   for (int n : {5, 10}) {
     Config c = load_config_string("", {"surface.friction=0", "impact.plastic_below_m_s=10",
                                        "beam.modes=" + std::to_string(n), "simulation.rtol=1e-8"});
-    c.modal_velocity.assign(n, 0.0);
-    c.modal_displacement.assign(n, 0.0);
-    c.output_interval_s = 1e30;
-    const PassResult r = c.run_pass();
+    c.initial.modal_velocity.assign(n, 0.0);
+    c.initial.modal_displacement.assign(n, 0.0);
+    c.simulation.output_interval_s = 1e30;
+    const PassResult r = run_case(build_case(c));
     ASSERT_FALSE(r.failure);
     std::printf("n = %d: %d episodes, peak %.4f N, last separation %.4f deg\n", n, r.summary.contact_episodes,
                 r.summary.peak_normal_force_n, r.summary.last_separation_deg);
@@ -139,16 +139,17 @@ TEST(Adaptive, Table52GridCompletes) {
         std::snprintf(buf[1], 32, "surface.depth_fraction=%g", depth);
         std::snprintf(buf[2], 32, "surface.friction=%g", mu);
         Config c = load_config_string("", {buf[0], buf[1], buf[2]});
-        c.output_interval_s = 1e30;
-        const PassResult r = c.run_pass();
+        c.simulation.output_interval_s = 1e30;
+        const PassResult r = run_case(build_case(c));
         if (r.failure) {
-          EXPECT_TRUE(r.failure->kind == "painleve" || r.failure->kind == "stick" || r.failure->kind == "impacts")
+          EXPECT_TRUE(r.failure->kind == FailureKind::painleve || r.failure->kind == FailureKind::stick ||
+                      r.failure->kind == FailureKind::impacts)
               << buf[0] << " " << buf[1] << " " << buf[2] << ": " << r.failure->message;
-          std::printf("%s %s %s: diagnosed %s: %s\n", buf[0], buf[1], buf[2], r.failure->kind.c_str(),
+          std::printf("%s %s %s: diagnosed %s: %s\n", buf[0], buf[1], buf[2], failure_name(r.failure->kind),
                       r.failure->message.c_str());
         } else {
           ++completed;
-          EXPECT_EQ(r.events.back().kind, "end");
+          EXPECT_EQ(r.events.back().kind, EventKind::end);
         }
       }
   std::printf("%d of 80 completed normally\n", completed);

@@ -22,24 +22,24 @@ std::string error_of(const std::string& toml, const std::vector<std::string>& se
 
 TEST(Config, DefaultsAreTheThesisBaseCase) {
   const Config c = load_config_string("", {});
-  EXPECT_EQ(c.physical.length_m, 0.0635);
-  EXPECT_EQ(c.physical.hub_radius_m, 0.0635);
-  EXPECT_EQ(c.physical.diameter_m, 5.08e-4);
-  EXPECT_EQ(c.physical.density_kg_m3, 7800.0);
-  EXPECT_EQ(c.physical.youngs_modulus_pa, 2.2e11);
-  EXPECT_EQ(c.physical.speed_rpm, 550.0);
-  EXPECT_EQ(c.physical.depth_fraction, 0.02);
-  EXPECT_EQ(c.physical.friction, 0.4);
-  EXPECT_EQ(c.physical.modes, 5);
-  EXPECT_EQ(c.start, "rigid");
-  EXPECT_EQ(c.scheme, "adaptive");
-  EXPECT_EQ(c.impact.plastic_below_m_s, 0.063);
-  EXPECT_EQ(c.end_angle_deg, 90.0);
-  EXPECT_EQ(c.impact.model, RestitutionModel::yigit);
-  EXPECT_EQ(c.impact.cap, 1.0);
-  EXPECT_EQ(c.impact.speed, RestitutionSpeed::normal);
-  EXPECT_FALSE(c.thesis_forces);
-  EXPECT_EQ(c.modal_velocity, std::vector<double>(5, 0.0));
+  EXPECT_EQ(c.beam.length_m, 0.0635);
+  EXPECT_EQ(c.beam.hub_radius_m, 0.0635);
+  EXPECT_EQ(c.beam.diameter_m, 5.08e-4);
+  EXPECT_EQ(c.beam.density_kg_m3, 7800.0);
+  EXPECT_EQ(c.beam.youngs_modulus_pa, 2.2e11);
+  EXPECT_EQ(c.beam.speed_rpm, 550.0);
+  EXPECT_EQ(c.surface.depth_fraction, 0.02);
+  EXPECT_EQ(c.contact.friction.mu, 0.4);
+  EXPECT_EQ(c.beam.modes, 5);
+  EXPECT_EQ(c.initial.start, "rigid");
+  EXPECT_EQ(c.simulation.scheme, Scheme::adaptive);
+  EXPECT_EQ(c.contact.impact.plastic_below_m_s, 0.063);
+  EXPECT_EQ(c.simulation.end_angle_deg, 90.0);
+  EXPECT_EQ(c.contact.impact.model, RestitutionModel::yigit);
+  EXPECT_EQ(c.contact.impact.cap, 1.0);
+  EXPECT_EQ(c.contact.impact.speed, RestitutionSpeed::normal);
+  EXPECT_FALSE(c.contact.friction.thesis_forces);
+  EXPECT_EQ(c.initial.modal_velocity, std::vector<double>(5, 0.0));
 }
 
 TEST(Config, ExampleFileEqualsTheDefaults) {
@@ -51,15 +51,15 @@ TEST(Config, OverridesAreReadAsTomlValues) {
   const Config c = load_config_string("[hub]\nspeed_rpm = 1000\n",
                                       {"hub.speed_rpm=3000", "initial.modal_velocity=[2,0,0,0,0]",
                                        "impact.restitution=0.5", "simulation.scheme=thesis", "beam.modes=5"});
-  EXPECT_EQ(c.physical.speed_rpm, 3000.0);
-  EXPECT_EQ(c.start, "flexible");  // non-zero modal velocity implies a flexible start
-  EXPECT_EQ(c.modal_velocity[0], 2.0);
-  EXPECT_EQ(c.impact.model, RestitutionModel::constant);
-  EXPECT_EQ(c.impact.constant, 0.5);
-  EXPECT_EQ(c.scheme, "thesis");  // a bare word is a string
+  EXPECT_EQ(c.beam.speed_rpm, 3000.0);
+  EXPECT_EQ(c.initial.start, "flexible");  // non-zero modal velocity implies a flexible start
+  EXPECT_EQ(c.initial.modal_velocity[0], 2.0);
+  EXPECT_EQ(c.contact.impact.model, RestitutionModel::constant);
+  EXPECT_EQ(c.contact.impact.constant, 0.5);
+  EXPECT_EQ(c.simulation.scheme, Scheme::thesis);  // a bare word is a string
   const Config quoted = load_config_string("", {"simulation.scheme=\"thesis\"", "compat.restitution_speed=full"});
-  EXPECT_EQ(quoted.scheme, "thesis");
-  EXPECT_EQ(quoted.impact.speed, RestitutionSpeed::full);
+  EXPECT_EQ(quoted.simulation.scheme, Scheme::thesis);
+  EXPECT_EQ(quoted.contact.impact.speed, RestitutionSpeed::full);
 }
 
 TEST(Config, ErrorsNameTheKeyAndTheValue) {

@@ -1,7 +1,9 @@
 // Sustained contact (SPEC §4): the multiplier equation, the static check of SPEC §10, and the
 // invariants of every converged corrector step of a pass.
-#include "rotbeam/contact.hpp"
+#include "rotbeam/dynamics.hpp"
 #include "rotbeam/pass.hpp"
+#include "rotbeam/plane.hpp"
+#include "rotbeam/rigid_contact.hpp"
 
 #include <cmath>
 #include <gtest/gtest.h>
@@ -39,20 +41,20 @@ TEST(Contact, StaticTipLoadConvergesToTheBeamFormula) {
   const double delta = 1e-4;  // small: the geometric nonlinearity is ~(δ/L)² ≈ 2e-6
   double previous = INFINITY;
   for (int n : {3, 5, 10, 20}) {
-    PhysicalParameters p;
+    BeamParameters p;
     p.modes = n;
     p.speed_rpm = 0.0;
-    Model model = make_model(p);
-    model.surface_distance = -delta;  // θ = θ0 = −90°: X_t = y_t, so the surface holds y_t = −δ
+    const ForeshorteningBeam model = make_beam(p);
+    const Plane plane(-delta);  // θ = θ0 = −90°: X_t = y_t, so the surface holds y_t = −δ
     const ModalIntegrals& mi = *model.integrals;
     // Linear static shape with y_t = −δ: q = −δ K⁻¹S(1)/(S(1)ᵀK⁻¹S(1)), K = (EI/L³) diag(r⁴).
     Eigen::VectorXd kinv_s = mi.s_tip.cwiseQuotient(mi.r4);
     Eigen::VectorXd q = -delta * kinv_s / mi.s_tip.dot(kinv_s);
-    Workspace ws(n);
+    ForeshorteningWorkspace ws(n);
     TipKinematics tip(n);
     const Eigen::VectorXd qd = Eigen::VectorXd::Zero(n);
     const AccelerationMultiplier am =
-        acceleration_multiplier(model, FrictionModel{0.0, false}, 0.0, q, qd, 1.0, ws, tip);
+        acceleration_multiplier(model, plane, FrictionModel{0.0, false}, 0.0, q, qd, 1.0, ws, tip);
     const double beam = 3 * model.bending_stiffness * delta / std::pow(model.length, 3);
     const double ratio = -am.solution.lambda / beam;
     const double thesis_ratio = std::abs(am.solution.lambda) * tip.grad_gap.norm() / beam;
@@ -68,19 +70,20 @@ TEST(Contact, StaticTipLoadConvergesToTheBeamFormula) {
 
 namespace {
 PassResult base_pass(double rpm, int modes, double mu, double plastic_below, double interval) {
-  PhysicalParameters p;
+  BeamParameters p;
   p.speed_rpm = rpm;
   p.modes = modes;
-  p.friction = mu;
-  const Model model = make_model(p);
+  const ForeshorteningBeam model = make_beam(p);
+  const Plane plane = plane_at_depth(model, 0.02);
   ImpactLaw law;
   law.plastic_below_m_s = plastic_below;
   InitialConditions ic;
   ic.q0 = Eigen::VectorXd::Zero(modes);
   ic.qd0 = Eigen::VectorXd::Zero(modes);
   PassOptions opt;
+  opt.scheme = Scheme::thesis;
   opt.output_interval_s = interval;
-  return run_thesis_pass(model, law, FrictionModel{mu, false}, ic, opt);
+  return run_pass({model, plane, {FrictionModel{mu, false}, law}}, ic, opt);
 }
 }  // namespace
 
@@ -128,24 +131,25 @@ TEST(ThesisPass, MatchesTheIndependentRunsOfSpec10) {
   EXPECT_NEAR(ten.summary.last_separation_deg, 10.0, 0.5);
   // The plastic straight-beam impact lifts off at once with λ ≈ +1.7 N (SPEC §10).
   ASSERT_GE(five.events.size(), 2u);
-  EXPECT_EQ(five.events[1].kind, "lift_off");
+  EXPECT_EQ(five.events[1].kind, EventKind::lift_off);
   EXPECT_NE(five.events[1].detail.find("1.69"), std::string::npos) << five.events[1].detail;
 }
 
 TEST(ThesisPass, ElasticFrictionlessPassClosesTheEnergyAudit) {
   // e = 1, μ = 0: only free flight (RK5, h = 1 µs) and exact momentum jumps; h changes only by
   // ΔT2 = −P ∂C/∂t at the impacts, so the audit must close to the free-flight drift (≤ 1e-9).
-  PhysicalParameters p;
-  p.friction = 0.0;
-  const Model model = make_model(p);
+  BeamParameters p;
+  const ForeshorteningBeam model = make_beam(p);
+  const Plane plane = plane_at_depth(model, 0.02);
   ImpactLaw law;
   law.model = RestitutionModel::constant;
   law.constant = 1.0;
   law.plastic_below_m_s = 0.0;
   InitialConditions ic;
   PassOptions opt;
+  opt.scheme = Scheme::thesis;
   opt.max_impacts = 2000;
-  const PassResult r = run_thesis_pass(model, law, FrictionModel{0.0, false}, ic, opt);
+  const PassResult r = run_pass({model, plane, {FrictionModel{0.0, false}, law}}, ic, opt);
   ASSERT_FALSE(r.failure) << r.failure->message;
   std::printf("e = 1, μ = 0: %d impacts, %d contact episodes, residual %.2e\n", r.summary.impacts,
               r.summary.contact_episodes, r.summary.energy_audit_residual);
@@ -157,17 +161,19 @@ TEST(ThesisPass, ElasticFrictionlessPassClosesTheEnergyAudit) {
 TEST(ThesisPass, EnergyAuditWithContactShrinksWithTheStep) {
   // With sustained contact and friction the thesis corrector (backward Euler) is first order, so the
   // audit residual is O(h): it must fall when the contact step falls (1e-7 → 2.5e-8 s).
-  PhysicalParameters p;
-  const Model model = make_model(p);
+  BeamParameters p;
+  const ForeshorteningBeam model = make_beam(p);
+  const Plane plane = plane_at_depth(model, 0.02);
   ImpactLaw law;
   law.plastic_below_m_s = 10.0;
   InitialConditions ic;
   PassOptions coarse, fine;
-  coarse.end_angle_rad = fine.end_angle_rad = -4.0 * M_PI / 180.0;  // the first contact episodes
+  coarse.scheme = fine.scheme = Scheme::thesis;
+  coarse.end_angle_deg = fine.end_angle_deg = -4.0;  // the first contact episodes
   fine.contact_step_s = 2.5e-8;
   fine.fine_contact_step_s = 2.5e-9;
-  const PassResult a = run_thesis_pass(model, law, FrictionModel{0.4, false}, ic, coarse);
-  const PassResult b = run_thesis_pass(model, law, FrictionModel{0.4, false}, ic, fine);
+  const PassResult a = run_pass({model, plane, {FrictionModel{0.4, false}, law}}, ic, coarse);
+  const PassResult b = run_pass({model, plane, {FrictionModel{0.4, false}, law}}, ic, fine);
   ASSERT_FALSE(a.failure);
   ASSERT_FALSE(b.failure);
   std::printf("audit residual: h = 1e-7 s: %.3e, h = 2.5e-8 s: %.3e\n", a.summary.energy_audit_residual,
@@ -178,13 +184,14 @@ TEST(ThesisPass, EnergyAuditWithContactShrinksWithTheStep) {
 }
 
 TEST(ThesisPass, NoImpactWhenTheSurfaceIsOutOfReach) {
-  PhysicalParameters p;
-  p.depth_fraction = 0.02;
-  const Model model = make_model(p);
+  BeamParameters p;
+  const ForeshorteningBeam model = make_beam(p);
+  const Plane plane = plane_at_depth(model, 0.02);
   InitialConditions ic;
   PassOptions opt;
-  opt.end_angle_rad = -20.0 * M_PI / 180.0;  // ends before the rigid contact angle −8.1°
-  const PassResult r = run_thesis_pass(model, ImpactLaw{}, FrictionModel{}, ic, opt);
+  opt.scheme = Scheme::thesis;
+  opt.end_angle_deg = -20.0;  // ends before the rigid contact angle −8.1°
+  const PassResult r = run_pass({model, plane, {}}, ic, opt);
   EXPECT_FALSE(r.failure);
   EXPECT_EQ(r.summary.impacts, 0);
   EXPECT_TRUE(std::isnan(r.summary.first_impact_deg));
@@ -192,15 +199,17 @@ TEST(ThesisPass, NoImpactWhenTheSurfaceIsOutOfReach) {
 
 TEST(ThesisPass, ThesisForceConventionScalesTheReportedForceByTheGradientNorm) {
   // compat.thesis_forces: reported F_n = |λ|·|∇C| and |F_t| = μ|λ||∇C| (thesis eqns 4-86, 4-92).
-  PhysicalParameters p;
-  const Model model = make_model(p);
+  BeamParameters p;
+  const ForeshorteningBeam model = make_beam(p);
+  const Plane plane = plane_at_depth(model, 0.02);
   ImpactLaw law;
   law.plastic_below_m_s = 10.0;
   InitialConditions ic;
   PassOptions opt;
+  opt.scheme = Scheme::thesis;
   opt.output_interval_s = 0.0;
-  opt.end_angle_rad = -5.0 * M_PI / 180.0;
-  const PassResult r = run_thesis_pass(model, law, FrictionModel{0.4, true}, ic, opt);
+  opt.end_angle_deg = -5.0;
+  const PassResult r = run_pass({model, plane, {FrictionModel{0.4, true}, law}}, ic, opt);
   ASSERT_FALSE(r.failure);
   TipKinematics tip(model.n);
   int rows = 0;
@@ -208,7 +217,7 @@ TEST(ThesisPass, ThesisForceConventionScalesTheReportedForceByTheGradientNorm) {
   for (const HistoryRow& row : r.history) {
     if (row.phase != Phase::contact || row.lambda == 0.0) continue;
     ++rows;
-    tip_kinematics(model, row.t, row.q, row.qd, tip);
+    tip_kinematics(model, plane, row.t, row.q, row.qd, tip);
     EXPECT_NEAR(row.normal_force, std::abs(row.lambda) * tip.grad_gap.norm(), 1e-12 * row.normal_force);
     EXPECT_NEAR(std::abs(row.friction_force), 0.4 * row.normal_force, 1e-12 * row.normal_force);
     lo = std::min(lo, tip.grad_gap.norm());

@@ -72,15 +72,15 @@ class LagrangianCheck : public ::testing::TestWithParam<Case> {};
 
 TEST_P(LagrangianCheck, MassMatrixAndEveryForceTermMatchTheLagrangian) {
   const Case c = GetParam();
-  PhysicalParameters pp;
+  BeamParameters pp;
   pp.modes = c.n;
   pp.speed_rpm = c.rpm;
-  const Model model = make_model(pp);
+  const ForeshorteningBeam model = make_beam(pp);
   const ReferenceBeam ref(model, c.n <= 5 ? 16 : 24);
   Eigen::VectorXd q, v;
   rotbeam::testing::random_state(model, c.seed, c.tip_m, 2.0, q, v);
 
-  Workspace ws(c.n);
+  ForeshorteningWorkspace ws(c.n);
   evaluate_dynamics(model, q, v, ws);
 
   // M = ∂²T2/∂q̇² (T1 is linear and T0, U independent of q̇).

@@ -10,12 +10,12 @@ TEST(Energy, EveryTermMatchesDirectQuadrature) {
   // Tolerance 1e-12 relative to each term's size (both routes are exact quadratures to ~1e-14).
   for (int n : {2, 5, 10}) {
     for (double rpm : {550.0, 3000.0}) {
-      PhysicalParameters pp;
+      BeamParameters pp;
       pp.modes = n;
       pp.speed_rpm = rpm;
-      const Model model = make_model(pp);
+      const ForeshorteningBeam model = make_beam(pp);
       const rotbeam::testing::ReferenceBeam ref(model, 24);
-      Workspace ws(n);
+      ForeshorteningWorkspace ws(n);
       for (unsigned seed = 1; seed <= 3; ++seed) {
         Eigen::VectorXd q, v;
         rotbeam::testing::random_state(model, seed, 0.01 * seed, 1.5, q, v);
@@ -34,8 +34,8 @@ TEST(Energy, EveryTermMatchesDirectQuadrature) {
 
 TEST(Energy, StraightBeamClosedForms) {
   // q = 0: J = m (r_h² + r_h L + L²/3), H_z = ω J, U = T2 = T1 = 0 (exact up to 1e-15 relative).
-  const Model model = make_model(PhysicalParameters{});
-  Workspace ws(model.n);
+  const ForeshorteningBeam model = make_beam(BeamParameters{});
+  ForeshorteningWorkspace ws(model.n);
   const Eigen::VectorXd z = Eigen::VectorXd::Zero(model.n);
   const EnergyTerms e = evaluate_energy(model, z, z, ws);
   const double L = model.length, rh = model.hub_radius;
@@ -48,16 +48,17 @@ TEST(Energy, StraightBeamClosedForms) {
 }
 
 #include "rotbeam/pass.hpp"
+#include "rotbeam/plane.hpp"
 
 TEST(HubTorque, WorkOfTheHubEqualsTheChangeOfInertialEnergyInFreeFlight) {
   // The history's τ comes from dH_z/dt; independently, in free flight the inertial energy
   // E = T0 + T1 + T2 + U changes only by the hub's work ∫τω dt. Free pass (surface out of reach),
   // q̇(0) = (2, 1, 0, 0, 0) m/s, adaptive rtol 1e-12, every step sampled; trapezoidal ∫τω dt.
   // Tolerance 1e-6 of the largest |E − E(0)| (the trapezoidal error over ~µs steps is ~1e-8 of it).
-  PhysicalParameters p;
+  BeamParameters p;
   p.speed_rpm = 3000;
-  Model model = make_model(p);
-  model.surface_distance = 1.0;
+  const ForeshorteningBeam model = make_beam(p);
+  const Plane plane(1.0);
   InitialConditions ic;
   ic.rigid_start = false;
   ic.q0 = Eigen::VectorXd::Zero(5);
@@ -67,9 +68,9 @@ TEST(HubTorque, WorkOfTheHubEqualsTheChangeOfInertialEnergyInFreeFlight) {
   opt.rtol = 1e-12;
   opt.atol = 1e-15;
   opt.output_interval_s = 0.0;
-  const PassResult r = run_adaptive_pass(model, ImpactLaw{}, FrictionModel{}, ic, opt);
+  const PassResult r = run_pass({model, plane, {}}, ic, opt);
   ASSERT_FALSE(r.failure);
-  Workspace ws(5);
+  ForeshorteningWorkspace ws(5);
   auto energy = [&](const HistoryRow& row) {
     const EnergyTerms e = evaluate_energy(model, row.q, row.qd, ws);
     return e.kinetic + e.potential;

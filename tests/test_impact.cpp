@@ -3,6 +3,7 @@
 #include "reference_beam.hpp"
 #include "rotbeam/energy.hpp"
 #include "rotbeam/impact.hpp"
+#include "rotbeam/plane.hpp"
 
 #include <gtest/gtest.h>
 
@@ -39,17 +40,18 @@ class ImpactBalance : public ::testing::TestWithParam<ImpactCase> {};
 
 TEST_P(ImpactBalance, ReversesTheNormalVelocityAndLosesTheRightEnergy) {
   const ImpactCase c = GetParam();
-  PhysicalParameters pp;
+  BeamParameters pp;
   pp.modes = c.n;
   pp.speed_rpm = c.rpm;
-  const Model model = make_model(pp);
+  const ForeshorteningBeam model = make_beam(pp);
+  const Plane plane = plane_at_depth(model, 0.02);
   Eigen::VectorXd q, v;
   rotbeam::testing::random_state(model, c.seed, 0.015, 1.0, q, v);
-  Workspace ws(c.n);
+  ForeshorteningWorkspace ws(c.n);
   TipKinematics tip(c.n);
   // Pick the time when the tip approaches: V_X > 0 near θ ≈ −10°.
   const double t = model.time_at(-10.0 * M_PI / 180.0);
-  tip_kinematics(model, t, q, v, tip);
+  tip_kinematics(model, plane, t, q, v, tip);
   ASSERT_GT(tip.gap_rate, 0.0);
   ImpactLaw law;
   law.model = RestitutionModel::constant;
@@ -61,7 +63,7 @@ TEST_P(ImpactBalance, ReversesTheNormalVelocityAndLosesTheRightEnergy) {
     evaluate_mass(model, q, ws);
     Eigen::LLT<Eigen::MatrixXd> llt(ws.mass);
     TipKinematics k(c.n);
-    tip_kinematics(model, t, q, qd, k);
+    tip_kinematics(model, plane, t, q, qd, k);
     const Eigen::VectorXd mg = llt.solve(k.grad_gap);
     const double a = k.grad_gap.dot(mg);
     const Eigen::VectorXd rel = qd + (k.gap_time_partial / a) * mg;
@@ -71,7 +73,7 @@ TEST_P(ImpactBalance, ReversesTheNormalVelocityAndLosesTheRightEnergy) {
   const double vx_before = tip.gap_rate;
   const double t2_before = evaluate_energy(model, q, v, ws).t2;
   Eigen::VectorXd qd = v;
-  const ImpactResult r = apply_impact(model, law, t, q, qd, ws, tip);
+  const ImpactResult r = apply_impact(model, plane, law, t, q, qd, ws, tip);
   // 1e-12 relative: one Cholesky solve and a few dot products of O(1) numbers.
   EXPECT_NEAR(r.vx_after, -c.e * vx_before, 1e-12 * vx_before);
   EXPECT_NEAR(r.vx_before, vx_before, 0.0);
@@ -93,13 +95,15 @@ INSTANTIATE_TEST_SUITE_P(Cases, ImpactBalance,
 namespace {
 // The impact of the straight beam at the geometric contact angle of the base case.
 struct StraightBeamImpact {
-  Model model = make_model(PhysicalParameters{});
-  Workspace ws{model.n};
+  ForeshorteningBeam model = make_beam(BeamParameters{});
+  const Plane plane = plane_at_depth(model, 0.02);
+  ForeshorteningWorkspace ws{model.n};
   TipKinematics tip{model.n};
   Eigen::VectorXd q = Eigen::VectorXd::Zero(model.n);
   Eigen::VectorXd qd = Eigen::VectorXd::Zero(model.n);
   ImpactResult apply(const ImpactLaw& law) {
-    return apply_impact(model, law, model.time_at(model.rigid_contact_angle()), q, qd, ws, tip);
+    return apply_impact(model, plane, law, model.time_at(plane.first_contact_angle(model.tip_radius(), model.theta0)),
+                        q, qd, ws, tip);
   }
 };
 }  // namespace
@@ -127,11 +131,12 @@ TEST(Impact, PlasticStraightBeamImpactStopsTheTip) {
 }
 
 TEST(Impact, RecedingTipIsNotAnImpact) {
-  const Model model = make_model(PhysicalParameters{});
-  Workspace ws(model.n);
+  const ForeshorteningBeam model = make_beam(BeamParameters{});
+  const Plane plane = plane_at_depth(model, 0.02);
+  ForeshorteningWorkspace ws(model.n);
   TipKinematics tip(model.n);
   const Eigen::VectorXd q = Eigen::VectorXd::Zero(model.n);
   Eigen::VectorXd qd = Eigen::VectorXd::Zero(model.n);
   // Past θ = 0 the straight tip moves away from the surface (V_X < 0).
-  EXPECT_THROW(apply_impact(model, ImpactLaw{}, model.time_at(0.1), q, qd, ws, tip), std::domain_error);
+  EXPECT_THROW(apply_impact(model, plane, ImpactLaw{}, model.time_at(0.1), q, qd, ws, tip), std::domain_error);
 }

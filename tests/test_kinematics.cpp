@@ -2,6 +2,7 @@
 #include "reference_beam.hpp"
 #include "rotbeam/dynamics.hpp"
 #include "rotbeam/kinematics.hpp"
+#include "rotbeam/plane.hpp"
 
 #include <gtest/gtest.h>
 
@@ -20,15 +21,16 @@ class KinematicsCheck : public ::testing::TestWithParam<Scenario> {};
 
 TEST_P(KinematicsCheck, GradientsRatesAndGammaMatchFiniteDifferences) {
   const Scenario s = GetParam();
-  PhysicalParameters pp;
+  BeamParameters pp;
   pp.modes = s.n;
   pp.speed_rpm = s.rpm;
-  const Model model = make_model(pp);
+  const ForeshorteningBeam model = make_beam(pp);
+  const Plane plane = plane_at_depth(model, 0.02);
   Eigen::VectorXd q, v;
   rotbeam::testing::random_state(model, s.seed, 0.02, 2.0, q, v);
   TipKinematics k(s.n);
-  tip_kinematics(model, s.t, q, v, k);
-  EXPECT_DOUBLE_EQ(k.gap, gap(model, s.t, q));
+  tip_kinematics(model, plane, s.t, q, v, k);
+  EXPECT_DOUBLE_EQ(k.gap, gap(model, plane, s.t, q));
 
   // C is quadratic in q: a central difference with any step is exact up to round-off
   // (|C| ≲ 0.13 m, step 1e-3 m: round-off ~1e-13). Tolerance 1e-10.
@@ -37,10 +39,10 @@ TEST_P(KinematicsCheck, GradientsRatesAndGammaMatchFiniteDifferences) {
     Eigen::VectorXd qp = q, qm = q;
     qp[i] += h;
     qm[i] -= h;
-    EXPECT_NEAR(k.grad_gap[i], (gap(model, s.t, qp) - gap(model, s.t, qm)) / (2 * h), 1e-10) << "∇C_" << i;
+    EXPECT_NEAR(k.grad_gap[i], (gap(model, plane, s.t, qp) - gap(model, plane, s.t, qm)) / (2 * h), 1e-10) << "∇C_" << i;
     TipKinematics kp(s.n), km(s.n);
-    tip_kinematics(model, s.t, qp, v, kp);
-    tip_kinematics(model, s.t, qm, v, km);
+    tip_kinematics(model, plane, s.t, qp, v, kp);
+    tip_kinematics(model, plane, s.t, qm, v, km);
     EXPECT_NEAR(k.grad_y[i], (kp.Y - km.Y) / (2 * h), 1e-10) << "∂Y/∂q_" << i;
   }
   // Along a trajectory q(τ) = q + v τ + ½ a τ², t + τ, with an arbitrary a: dC/dτ = Ċ, d²C/dτ² = ∇Cᵀa + γ.
@@ -49,7 +51,7 @@ TEST_P(KinematicsCheck, GradientsRatesAndGammaMatchFiniteDifferences) {
   Eigen::VectorXd a = Eigen::VectorXd::LinSpaced(s.n, 100.0, -300.0);
   auto c_at = [&](double tau) {
     Eigen::VectorXd qt = q + v * tau + 0.5 * a * tau * tau;
-    return gap(model, s.t + tau, qt);
+    return gap(model, plane, s.t + tau, qt);
   };
   const double tau = 1e-5;
   const double d1 = (c_at(tau) - c_at(-tau)) / (2 * tau), d1h = (c_at(tau / 2) - c_at(-tau / 2)) / tau;
@@ -65,21 +67,21 @@ TEST_P(KinematicsCheck, GradientsRatesAndGammaMatchFiniteDifferences) {
   auto y_traj = [&](double tt) {
     TipKinematics kk(s.n);
     Eigen::VectorXd qt = q + v * tt + 0.5 * a * tt * tt;
-    tip_kinematics(model, s.t + tt, qt, v, kk);
+    tip_kinematics(model, plane, s.t + tt, qt, v, kk);
     return kk.Y;
   };
   const double y2 = (y_traj(tau) - 2 * y_traj(0) + y_traj(-tau)) / (tau * tau);
   const double y2h = (y_traj(tau / 2) - 2 * y_traj(0) + y_traj(-tau / 2)) / (tau * tau / 4);
-  EXPECT_NEAR(k.grad_y.dot(a) + k.gamma_y, (4 * y2h - y2) / 3, 1e-6 * scale) << "Ÿ = (∂Y/∂q)ᵀq̈ + γ_Y";
+  EXPECT_NEAR(k.grad_y.dot(a) + k.bias_ay, (4 * y2h - y2) / 3, 1e-6 * scale) << "Ÿ = (∂Y/∂q)ᵀq̈ + γ_Y";
   // ∂C/∂t alone (q frozen).
   const double dt = 1e-6;
-  EXPECT_NEAR(k.gap_time_partial, (gap(model, s.t + dt, q) - gap(model, s.t - dt, q)) / (2 * dt),
+  EXPECT_NEAR(k.gap_time_partial, (gap(model, plane, s.t + dt, q) - gap(model, plane, s.t - dt, q)) / (2 * dt),
               1e-7 * model.omega * (model.hub_radius + model.length));
   // V_Y by differencing Y_t along the same trajectory.
   auto y_at = [&](double t2) {
     TipKinematics kk(s.n);
     Eigen::VectorXd qt = q + v * t2;
-    tip_kinematics(model, s.t + t2, qt, v, kk);
+    tip_kinematics(model, plane, s.t + t2, qt, v, kk);
     return kk.Y;
   };
   const double y1 = (y_at(tau) - y_at(-tau)) / (2 * tau), y1h = (y_at(tau / 2) - y_at(-tau / 2)) / tau;
@@ -92,11 +94,12 @@ INSTANTIATE_TEST_SUITE_P(States, KinematicsCheck,
 
 TEST(Kinematics, StraightBeamTipFollowsTheHub) {
   // q = 0: X_t = (r_h + L) cos θ, Y_t = (r_h + L) sin θ, V = ω(r_h + L)(−sin θ, cos θ) exactly.
-  const Model model = make_model(PhysicalParameters{});
+  const ForeshorteningBeam model = make_beam(BeamParameters{});
+  const Plane plane = plane_at_depth(model, 0.02);
   const Eigen::VectorXd z = Eigen::VectorXd::Zero(model.n);
   TipKinematics k(model.n);
   const double t = 0.01, th = model.theta(t), R = model.hub_radius + model.length;
-  tip_kinematics(model, t, z, z, k);
+  tip_kinematics(model, plane, t, z, z, k);
   EXPECT_NEAR(k.X, R * std::cos(th), 1e-16);
   EXPECT_NEAR(k.Y, R * std::sin(th), 1e-16);
   EXPECT_NEAR(k.VX, -model.omega * R * std::sin(th), 1e-14);

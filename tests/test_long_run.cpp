@@ -1,6 +1,6 @@
 // Many passes in one process: memory stays flat and results repeat exactly (issue: long runs).
 // 160 passes: 20 cases (1000 and 3000 rpm, 2 and 6 % depth, five μ) run eight times each.
-#include "rotbeam/config.hpp"
+#include "rotbeam/case.hpp"
 #include "rotbeam/pass_output.hpp"
 #include "rotbeam/process_memory.hpp"
 
@@ -14,10 +14,10 @@ TEST(LongRun, MemoryStaysFlatAndResultsRepeat) {
     for (double depth : {0.02, 0.06})
       for (double mu : {0.1, 0.3, 0.4, 0.5, 0.7}) {
         Config c = load_config_string("", {});
-        c.physical.speed_rpm = rpm;
-        c.physical.depth_fraction = depth;
-        c.physical.friction = mu;
-        c.output_interval_s = 1e-4;
+        c.beam.speed_rpm = rpm;
+        c.surface.depth_fraction = depth;
+        c.contact.friction.mu = mu;
+        c.simulation.output_interval_s = 1e-4;
         cases.push_back(c);
       }
   std::vector<std::string> first(cases.size());
@@ -25,8 +25,9 @@ TEST(LongRun, MemoryStaysFlatAndResultsRepeat) {
   const int rounds = 8;
   for (int round = 0; round < rounds; ++round) {
     for (std::size_t k = 0; k < cases.size(); ++k) {
-      const PassResult r = cases[k].run_pass();
-      nlohmann::json j = summary_json(r, cases[k]);
+      const Case cs = build_case(cases[k]);
+      const PassResult r = run_case(cs);
+      nlohmann::json j = summary_json(r, cases[k], *cs.surface);
       j.erase("wall_time_s");
       const std::string f = j.dump() + std::to_string(r.history.size());
       if (round == 0)

@@ -13,8 +13,8 @@ namespace {
 
 // Hermite-cubic beam elements (w, w' per node), consistent mass, geometric stiffness from T(s)
 // integrated with 4-point Gauss (exact for the degree-6 integrand). Eigenvalue error O(h⁴).
-Eigen::VectorXd finite_element_frequencies_hz(const PhysicalParameters& p, int elements) {
-  const Model m = make_model(p);
+Eigen::VectorXd finite_element_frequencies_hz(const BeamParameters& p, int elements) {
+  const ForeshorteningBeam m = make_beam(p);
   const double L = m.length, l = L / elements, ei = m.bending_stiffness, rho_a = m.mass_per_length;
   const double w2 = m.omega * m.omega;
   const int dofs = 2 * (elements + 1);
@@ -51,10 +51,10 @@ Eigen::VectorXd finite_element_frequencies_hz(const PhysicalParameters& p, int e
 
 TEST(ModalAnalysis, ExactAtRest) {
   // ω = 0: Ω_i = r_i² √(EI/(ρA L⁴)), to 1e-12 relative (only the eigen-solver's round-off).
-  PhysicalParameters p;
+  BeamParameters p;
   p.modes = 12;
   p.speed_rpm = 0.0;  // no spin
-  const Model m = make_model(p);
+  const ForeshorteningBeam m = make_beam(p);
   const ModalAnalysis a = modal_analysis(m);
   const double c = std::sqrt(m.bending_stiffness / (m.mass_per_length * std::pow(m.length, 4)));
   for (int i = 0; i < p.modes; ++i) {
@@ -68,7 +68,7 @@ TEST(ModalAnalysis, ConvergesInModeCountToTheContinuousProblemAtSpeed) {
   // (O(h⁴)), required < 1e-6 here, so < 1e-7; more elements do not help because the dense
   // generalised eigen-solver's round-off grows as N⁴ (≈ 2e-8 at 160 elements).
   for (double rpm : {550.0, 3000.0, 10000.0}) {
-    PhysicalParameters p;
+    BeamParameters p;
     p.speed_rpm = rpm;
     const Eigen::VectorXd fe = finite_element_frequencies_hz(p, 80);
     const Eigen::VectorXd fe_coarse = finite_element_frequencies_hz(p, 40);
@@ -77,7 +77,7 @@ TEST(ModalAnalysis, ConvergesInModeCountToTheContinuousProblemAtSpeed) {
     Eigen::VectorXd previous;
     for (int n : {3, 4, 5, 6, 8, 10, 12, 16}) {
       p.modes = n;
-      const ModalAnalysis a = modal_analysis(make_model(p));
+      const ModalAnalysis a = modal_analysis(make_beam(p));
       double worst = 0.0;
       for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(a.frequencies_hz[k] / fe[k] - 1.0));
       std::printf("  n = %2d: largest relative error of f1..f3 = %.3e\n", n, worst);
@@ -96,7 +96,7 @@ TEST(ModalAnalysis, ConvergesInModeCountToTheContinuousProblemAtSpeed) {
 }
 
 TEST(ModalAnalysis, CentrifugalStiffeningRaisesTheFundamental) {
-  PhysicalParameters p;
+  BeamParameters p;
   const Eigen::MatrixXd f = frequencies_versus_speed(p, {0.0, 550.0, 3000.0});
   EXPECT_LT(f(0, 0), f(1, 0));
   EXPECT_LT(f(1, 0), f(2, 0));

@@ -5,6 +5,7 @@
 #include "rotbeam/impact.hpp"
 #include "rotbeam/kinematics.hpp"
 #include "rotbeam/rk5.hpp"
+#include "rotbeam/plane.hpp"
 
 #include <atomic>
 #include <cstdlib>
@@ -24,10 +25,11 @@ using namespace rotbeam;
 
 TEST(NoAllocation, RightHandSideKinematicsImpactAndRk5Step) {
   for (int n : {1, 5, 10, 20}) {
-    PhysicalParameters p;
+    BeamParameters p;
     p.modes = n;
-    const Model model = make_model(p);
-    Workspace ws(n);
+    const ForeshorteningBeam model = make_beam(p);
+    const Plane plane = plane_at_depth(model, 0.02);
+    ForeshorteningWorkspace ws(n);
     TipKinematics tip(n);
     Rk5Stepper stepper(n);
     Eigen::VectorXd q = Eigen::VectorXd::Constant(n, 1e-3), v = Eigen::VectorXd::Constant(n, 0.3),
@@ -42,10 +44,10 @@ TEST(NoAllocation, RightHandSideKinematicsImpactAndRk5Step) {
     allocations = 0;
     counting = true;
     acceleration(model, q, v, nullptr, ws, a);
-    tip_kinematics(model, t, q, v, tip);
+    tip_kinematics(model, plane, t, q, v, tip);
     stepper.step(accel, t, q, v, 1e-6, q2, v2);
-    tip_kinematics(model, t, q, qd, tip);
-    if (tip.gap_rate > 0) apply_impact(model, ImpactLaw{}, t, q, qd, ws, tip);
+    tip_kinematics(model, plane, t, q, qd, tip);
+    if (tip.gap_rate > 0) apply_impact(model, plane, ImpactLaw{}, t, q, qd, ws, tip);
     counting = false;
     EXPECT_EQ(allocations.load(), 0) << "n = " << n;
     EXPECT_TRUE(a.allFinite());
@@ -57,7 +59,7 @@ TEST(NoAllocation, CounterSeesAllocations) {
   // cannot fail because the wrapping silently stopped working).
   allocations = 0;
   counting = true;
-  Workspace ws(7);
+  ForeshorteningWorkspace ws(7);
   counting = false;
   EXPECT_GT(allocations.load(), 0);
 }

@@ -1,7 +1,9 @@
 // docs/reliability.md is the test data: every row of its tables is run against the binary.
 // Plus the failure kinds no configuration reaches (stick, non-finite) and interruption.
-#include "rotbeam/contact.hpp"
+#include "rotbeam/rigid_contact.hpp"
 #include "rotbeam/pass.hpp"
+#include "rotbeam/dynamics.hpp"
+#include "rotbeam/plane.hpp"
 
 #include <array>
 #include <cstdio>
@@ -144,18 +146,18 @@ TEST(Reliability, EveryNumericalFailureRowOfTheDocument) {
 TEST(Reliability, StickIsDiagnosedByTheLockedTipAnalysis) {
   // A beam held statically against the surface (no spin, q̇ = 0): with the tip locked, the
   // tangential force needed is within μF_n, so the decision is `stick`; with μ = 0 it slides.
-  PhysicalParameters p;
+  BeamParameters p;
   p.speed_rpm = 0.0;
-  Model model = make_model(p);
-  model.surface_distance = -1e-3;
+  const ForeshorteningBeam model = make_beam(p);
+  const Plane plane(-1e-3);
   const ModalIntegrals& mi = *model.integrals;
   const Eigen::VectorXd kinv_s = mi.s_tip.cwiseQuotient(mi.r4);
   const Eigen::VectorXd q = -1e-3 * kinv_s / mi.s_tip.dot(kinv_s);
   const Eigen::VectorXd qd = Eigen::VectorXd::Zero(model.n);
-  Workspace ws(model.n);
+  ForeshorteningWorkspace ws(model.n);
   TipKinematics tip(model.n);
   evaluate_dynamics(model, q, qd, ws);
-  tip_kinematics(model, 0.0, q, qd, tip);
+  tip_kinematics(model, plane, 0.0, q, qd, tip);
   const SlipDecision held = decide_slip(model, FrictionModel{0.4, false}, tip, ws);
   EXPECT_EQ(held.kind, SlipDecision::Kind::stick);
   EXPECT_LT(held.stick_normal, 0.0);
@@ -166,19 +168,20 @@ TEST(Reliability, StickIsDiagnosedByTheLockedTipAnalysis) {
 TEST(Reliability, NonFiniteStateIsDiagnosed) {
   // A NaN in the state (no input produces one: every input is range-checked) stops both schemes
   // with a `non_finite` failure instead of looping or writing NaN results as if valid.
-  PhysicalParameters p;
-  const Model model = make_model(p);
+  BeamParameters p;
+  const ForeshorteningBeam model = make_beam(p);
+  const Plane plane = plane_at_depth(model, 0.02);
   InitialConditions ic;
   ic.rigid_start = false;
   ic.q0 = Eigen::VectorXd::Zero(model.n);
   ic.qd0 = Eigen::VectorXd::Zero(model.n);
   ic.qd0[2] = std::numeric_limits<double>::quiet_NaN();
-  PassOptions opt;
-  for (const PassResult& r : {run_thesis_pass(model, ImpactLaw{}, FrictionModel{}, ic, opt),
-                              run_adaptive_pass(model, ImpactLaw{}, FrictionModel{}, ic, opt)}) {
-    ASSERT_TRUE(r.failure.has_value()) << r.summary.scheme;
-    EXPECT_TRUE(r.failure->kind == "non_finite" || r.failure->kind == "step_underflow")
-        << r.summary.scheme << ": " << r.failure->kind << " " << r.failure->message;
+  PassOptions thesis, adaptive;
+  thesis.scheme = Scheme::thesis;
+  for (const PassResult& r : {run_pass({model, plane, {}}, ic, thesis), run_pass({model, plane, {}}, ic, adaptive)}) {
+    ASSERT_TRUE(r.failure.has_value()) << scheme_name(r.summary.scheme);
+    EXPECT_TRUE(r.failure->kind == FailureKind::non_finite || r.failure->kind == FailureKind::step_underflow)
+        << scheme_name(r.summary.scheme) << ": " << failure_name(r.failure->kind) << " " << r.failure->message;
   }
 }
 

@@ -6,6 +6,8 @@
 // velocities give 7.45906). So: our velocities rounded to 4 decimals must equal the printed ones,
 // and ΔV_X and −V_X(+0)/V_X(−0) computed from the rounded velocities must equal the printed ones.
 #include "rotbeam/first_impact.hpp"
+#include "rotbeam/dynamics.hpp"
+#include "rotbeam/plane.hpp"
 
 #include <cmath>
 #include <gtest/gtest.h>
@@ -28,17 +30,17 @@ const Row kTable[] = {
 double round4(double v) { return std::round(v * 1e4) / 1e4; }
 
 FirstImpactResult run(double rpm, double qd1, int modes = 5) {
-  PhysicalParameters p;
+  BeamParameters p;
   p.speed_rpm = rpm;
   p.modes = modes;
-  const Model model = make_model(p);
+  const ForeshorteningBeam model = make_beam(p);
   InitialConditions ic;
   ic.rigid_start = qd1 == 0.0;
   ic.q0 = Eigen::VectorXd::Zero(modes);
   ic.qd0 = Eigen::VectorXd::Zero(modes);
   ic.qd0[0] = qd1;
-  ImpactLaw law;
-  return first_impact(model, law, ic, M_PI / 2, 1e-6);
+  const Plane plane = plane_at_depth(model, 0.02);
+  return first_impact({model, plane, {FrictionModel{}, ImpactLaw{}}}, ic, 90.0, 1e-6);
 }
 
 }  // namespace

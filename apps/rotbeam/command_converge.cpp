@@ -51,15 +51,20 @@ int run_converge(const ConvergeOptions& o) {
   if (!o.steps.empty()) ladder.thesis_free_steps = parse_list<double>(o.steps, "--steps");
   if (!o.modes.empty()) ladder.modes = parse_list<int>(o.modes, "--modes");
   if (o.jobs < 0) throw ConfigError("--jobs " + std::to_string(o.jobs) + ": must be >= 0");
-  const ConvergenceStudy study = run_convergence(config, ladder, o.jobs);
+  install_interrupt_handlers();
+  const ConvergenceStudy study = run_convergence(config, ladder, o.jobs, &interrupt_token());
+  if (interrupt_token().stop_requested()) {
+    print_error("convergence study interrupted");
+    return kInterrupted;
+  }
   if (o.json) {
     std::cout << convergence_json(study).dump(2) << "\n";
     return kSuccess;
   }
   const PassSummary& ref = study.runs.front().summary;
-  std::cout << "Convergence of " << fixed(config.physical.speed_rpm, 0) << " rpm, depth "
-            << fixed(100 * config.physical.depth_fraction, 2) << " %, μ = " << config.physical.friction << ", "
-            << config.physical.modes << " modes; differences (Δ) from " << study.runs.front().label << "\n\n";
+  std::cout << "Convergence of " << fixed(config.beam.speed_rpm, 0) << " rpm, depth "
+            << fixed(100 * config.surface.depth_fraction, 2) << " %, μ = " << config.contact.friction.mu << ", "
+            << config.beam.modes << " modes; differences (Δ) from " << study.runs.front().label << "\n\n";
   std::printf("%-32s %9s %9s %5s %5s %10s %11s %9s %11s %10s %10s %9s %8s\n", "run", "sep_deg", "Δsep_deg", "imp",
               "epis", "t_cont_ms", "impulse_mNs", "Δimp_rel", "peak_Fn_N", "Δpeak_rel", "W_f_mJ", "Δcont_rel",
               "wall_s");

@@ -2,6 +2,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 
+#include "rotbeam/case.hpp"
 #include "rotbeam/impact_output.hpp"
 
 #include <cmath>
@@ -18,10 +19,10 @@ struct ImpactOptions {
 
 int run_impact(const ImpactOptions& o) {
   const Config config = o.case_options.load();
-  const FirstImpactResult r = run_first_impact(config);
+  const FirstImpactResult r = run_first_impact(build_case(config));
   if (!r.found) {
     print_error("no impact: the tip stays clear of the surface up to the end angle " +
-                fixed(config.end_angle_deg, 3) + " deg (closest gap " + std::to_string(r.min_gap) + " m)");
+                fixed(config.simulation.end_angle_deg, 3) + " deg (closest gap " + std::to_string(r.min_gap) + " m)");
     return kNoImpact;
   }
   const double theta_deg = r.theta * 180.0 / M_PI;
@@ -31,15 +32,15 @@ int run_impact(const ImpactOptions& o) {
     std::cout << j.dump(2) << "\n";
     return kSuccess;
   }
-  std::string start = config.start;
-  if (config.start == "flexible") {
+  std::string start = config.initial.start;
+  if (config.initial.start == "flexible") {
     start = "flexible, q̇(0) = [";
-    for (std::size_t i = 0; i < config.modal_velocity.size(); ++i)
-      start += (i ? ", " : "") + fixed(config.modal_velocity[i], 3);
+    for (std::size_t i = 0; i < config.initial.modal_velocity.size(); ++i)
+      start += (i ? ", " : "") + fixed(config.initial.modal_velocity[i], 3);
     start += "] m/s";
   }
-  std::cout << "First impact: " << fixed(config.physical.speed_rpm, 0) << " rpm, depth "
-            << fixed(100.0 * config.physical.depth_fraction, 2) << " %, " << config.physical.modes << " modes, "
+  std::cout << "First impact: " << fixed(config.beam.speed_rpm, 0) << " rpm, depth "
+            << fixed(100.0 * config.surface.depth_fraction, 2) << " %, " << config.beam.modes << " modes, "
             << start << "\n"
             << "  time             t       = " << fixed(r.t, 7) << " s\n"
             << "  hub angle        θ       = " << fixed(theta_deg, 4) << " deg\n"
@@ -50,7 +51,7 @@ int run_impact(const ImpactOptions& o) {
             << "  restitution  −V_X(+0)/V_X(−0) = " << fixed(-im.vx_after / im.vx_before, 4) << "\n"
             << "  impulse          P       = " << fixed(im.impulse * 1e6, 4) << " µN s\n\n"
             << "Table 5-3 row:  rpm | V_X(−0) | V_X(+0) | ΔV_X | −V_X(+0)/V_X(−0)\n"
-            << "                " << fixed(config.physical.speed_rpm, 0) << " | " << fixed(im.vx_before, 4) << " | "
+            << "                " << fixed(config.beam.speed_rpm, 0) << " | " << fixed(im.vx_before, 4) << " | "
             << fixed(im.vx_after, 4) << " | " << fixed(im.vx_before - im.vx_after, 4) << " | "
             << fixed(-im.vx_after / im.vx_before, 4) << "\n";
   return kSuccess;

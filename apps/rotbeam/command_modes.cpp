@@ -62,10 +62,10 @@ int run_modes(const ModesOptions& o) {
   if (!o.speeds.empty()) {
     speeds = parse_speeds(o.speeds);
   } else {
-    speeds = default_mode_speeds_rpm(config.physical.speed_rpm);
+    speeds = default_mode_speeds_rpm(config.beam.speed_rpm);
   }
-  const Eigen::MatrixXd f = frequencies_versus_speed(config.physical, speeds);
-  const int n = config.physical.modes;
+  const Eigen::MatrixXd f = frequencies_versus_speed(config.beam, speeds);
+  const int n = config.beam.modes;
 
   std::string csv_path = o.csv_path;
   if (!o.plot_path.empty() && csv_path.empty()) csv_path = o.plot_path + ".csv";
@@ -101,8 +101,8 @@ int run_modes(const ModesOptions& o) {
   }
   if (!o.csv_path.empty() || !o.plot_path.empty()) return kSuccess;
   std::cout << "In-plane natural frequencies of the spinning filament, linearised about the straight beam\n"
-            << "(L = " << config.physical.length_m << " m, D = " << config.physical.diameter_m
-            << " m, r_h = " << config.physical.hub_radius_m << " m, " << n << " assumed modes)\n\n";
+            << "(L = " << config.beam.length_m << " m, D = " << config.beam.diameter_m
+            << " m, r_h = " << config.beam.hub_radius_m << " m, " << n << " assumed modes)\n\n";
   std::cout << "  speed_rpm";
   for (int k = 0; k < n; ++k) {
     std::string head = "f" + std::to_string(k + 1) + "_hz";

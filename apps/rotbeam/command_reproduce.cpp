@@ -6,18 +6,17 @@
 #include "python_bridge.hpp"
 
 #include "rotbeam/atomic_file.hpp"
+#include "rotbeam/case.hpp"
 #include "rotbeam/impact_output.hpp"
-#include "rotbeam/pass.hpp"
+#include "rotbeam/job_runner.hpp"
 #include "rotbeam/pass_output.hpp"
 
-#include <atomic>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
 #include <mutex>
-#include <thread>
 
 namespace rotbeam::cli {
 
@@ -146,26 +145,31 @@ int run_reproduce(const ReproduceOptions& o) {
       jobs.push_back({dir / model / id, load_config(std::nullopt, all)});
     }
   install_interrupt_handlers();
-  std::atomic<std::size_t> next{0};
-  std::atomic<int> done{0};
   std::mutex mutex;
   std::vector<std::string> failures;
-  auto worker = [&] {
-    for (std::size_t i; (i = next.fetch_add(1)) < jobs.size();) {
-      if (interrupt_requested()) break;
-      const PassResult r = jobs[i].config.run_pass();
-      write_pass_outputs(jobs[i].folder, r, jobs[i].config);
-      std::lock_guard<std::mutex> lock(mutex);
-      if (r.failure) failures.push_back(jobs[i].folder.string() + ": " + r.failure->kind + ": " + r.failure->message);
-      std::fprintf(stderr, "%3d/%zu %s%s\n", ++done, jobs.size(), (jobs[i].folder.parent_path().filename() / jobs[i].folder.filename()).c_str(),
-                   r.failure ? (" (" + r.failure->kind + ")").c_str() : "");
-    }
+  std::vector<std::string> outcome(jobs.size());
+  JobRunnerOptions runner;
+  runner.threads = o.jobs;
+  runner.stop = &interrupt_token();
+  runner.on_job_finished = [&](const JobProgress& p) {
+    const fs::path& folder = jobs[p.job].folder;
+    std::fprintf(stderr, "%3zu/%zu %s%s\n", p.finished, p.total, (folder.parent_path().filename() / folder.filename()).c_str(),
+                 outcome[p.job].c_str());
   };
-  const int threads = o.jobs > 0 ? o.jobs : std::max(1u, std::thread::hardware_concurrency());
-  std::vector<std::thread> pool;
-  for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
-  for (std::thread& t : pool) t.join();
-  if (interrupt_requested()) {
+  run_jobs(
+      jobs.size(),
+      [&](std::size_t i) {
+        const rotbeam::Case c = build_case(jobs[i].config);
+        PassFiles files(jobs[i].folder, jobs[i].config.beam.modes);
+        const PassResult r = run_case(c, {&files, &interrupt_token()});
+        files.commit(r, jobs[i].config, *c.surface);
+        if (!r.failure) return;
+        std::lock_guard<std::mutex> lock(mutex);
+        outcome[i] = std::string(" (") + failure_name(r.failure->kind) + ")";
+        failures.push_back(jobs[i].folder.string() + ": " + failure_name(r.failure->kind) + ": " + r.failure->message);
+      },
+      runner);
+  if (interrupt_token().stop_requested()) {
     print_error("reproduction interrupted; run it again");
     return kInterrupted;
   }
@@ -180,7 +184,7 @@ int run_reproduce(const ReproduceOptions& o) {
     std::vector<std::string> ov = {"hub.speed_rpm=" + number(row[0])};
     if (row[1] != 0) ov.push_back("initial.modal_velocity=[" + number(row[1]) + ",0,0,0,0]");
     const Config c = load_config(std::nullopt, ov);
-    const FirstImpactResult r = run_first_impact(c);
+    const FirstImpactResult r = run_first_impact(build_case(c));
     table.push_back({{"rpm", row[0]},
                      {"modal_velocity_1", row[1]},
                      {"printed", {row[2], row[3], row[4], row[5]}},

@@ -2,6 +2,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 
+#include "rotbeam/case.hpp"
 #include "rotbeam/pass_output.hpp"
 
 #include <cmath>
@@ -20,9 +21,10 @@ struct RunOptions {
 
 void print_summary(const Config& config, const PassResult& r, const std::string& dir) {
   const PassSummary& s = r.summary;
-  std::cout << "Pass: " << fixed(config.physical.speed_rpm, 0) << " rpm, depth "
-            << fixed(100 * config.physical.depth_fraction, 2) << " %, μ = " << config.physical.friction << ", "
-            << config.physical.modes << " modes, " << config.start << " start, " << s.scheme << " scheme\n";
+  std::cout << "Pass: " << fixed(config.beam.speed_rpm, 0) << " rpm, depth "
+            << fixed(100 * config.surface.depth_fraction, 2) << " %, μ = " << config.contact.friction.mu << ", "
+            << config.beam.modes << " modes, " << config.initial.start << " start, " << scheme_name(s.scheme)
+            << " scheme\n";
   std::cout << "  impacts               " << s.impacts << " (" << s.plastic_impacts << " plastic)\n";
   std::cout << "  contact episodes      " << s.contact_episodes << ", " << fixed(s.contact_time_s * 1e3, 4)
             << " ms in contact\n";
@@ -51,17 +53,20 @@ int run_pass_command(const RunOptions& o) {
   } catch (const std::exception& e) {
     throw ConfigError(std::string("-o ") + e.what());
   }
+  const Case c = build_case(config);
   install_interrupt_handlers();
-  const PassResult r = config.run_pass();
-  write_pass_outputs(o.output_dir, r, config);
+  PassFiles files(o.output_dir, config.beam.modes);
+  const PassResult r = run_case(c, {&files, &interrupt_token()});
+  files.commit(r, config, *c.surface);
   if (o.json)
-    std::cout << summary_json(r, config).dump(2) << "\n";
+    std::cout << summary_json(r, config, *c.surface).dump(2) << "\n";
   else
     print_summary(config, r, o.output_dir);
   if (r.failure) {
- print_error(std::string(r.failure->kind == "interrupted" ? "interrupted" : "numerical failure") + " (" + r.failure->kind + ") at t = " + std::to_string(r.failure->t) +
-                " s, θ = " + fixed(r.failure->theta * 180.0 / M_PI, 4) + " deg: " + r.failure->message +
-                "; results up to there are in " + o.output_dir);
+    const bool interrupted = r.failure->kind == FailureKind::interrupted;
+    print_error(std::string(interrupted ? "interrupted" : "numerical failure") + " (" + failure_name(r.failure->kind) +
+                ") at t = " + std::to_string(r.failure->t) + " s, θ = " + fixed(r.failure->theta * 180.0 / M_PI, 4) +
+                " deg: " + r.failure->message + "; results up to there are in " + o.output_dir);
     return exit_code_for_failure(r.failure->kind);
   }
   return kSuccess;

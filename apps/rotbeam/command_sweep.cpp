@@ -2,7 +2,6 @@
 #include "commands.hpp"
 #include "common.hpp"
 
-#include "rotbeam/pass.hpp"
 #include "rotbeam/sweep.hpp"
 
 #include <cmath>
@@ -57,6 +56,7 @@ int run_sweep_command(const SweepCommandOptions& o) {
     std::fflush(stderr);
   };
   install_interrupt_handlers();
+  options.stop = &interrupt_token();
   const SweepReport r = run_sweep(axes, options);
   if (terminal) std::fprintf(stderr, "\n");
   std::cout << r.cases.size() << " cases: " << r.ran << " run (" << r.failed << " stopped on a diagnosed failure), "

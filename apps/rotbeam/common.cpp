@@ -1,7 +1,5 @@
 #include "common.hpp"
 
-#include "rotbeam/pass.hpp"
-
 #include <csignal>
 #include <cstdio>
 #include <iostream>
@@ -25,24 +23,16 @@ void print_error(const std::string& message) {
   std::cerr << "rotbeam: error: " << one_line << std::endl;
 }
 
-int exit_code_for_failure(const std::string& kind) {
-  if (kind == "painleve") return kPainleve;
-  if (kind == "stick") return kStick;
-  if (kind == "corrector") return kCorrectorNotConverged;
-  if (kind == "step_underflow") return kStepUnderflow;
-  if (kind == "non_finite") return kNonFinite;
-  if (kind == "validity") return kValidity;
-  if (kind == "impacts" || kind == "chatter") return kImpactsAccumulate;
-  if (kind == "interrupted") return kInterrupted;
-  return kRuntimeFailure;
-}
-
 namespace {
+StopToken g_interrupt;
+
 extern "C" void on_interrupt(int signal) {
-  rotbeam::request_interrupt();
+  g_interrupt.request_stop();
   std::signal(signal, SIG_DFL);  // a second signal ends the process at once
 }
 }  // namespace
+
+const StopToken& interrupt_token() { return g_interrupt; }
 
 void install_interrupt_handlers() {
   std::signal(SIGINT, on_interrupt);

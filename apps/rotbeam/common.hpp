@@ -2,6 +2,8 @@
 #pragma once
 
 #include "rotbeam/config.hpp"
+#include "rotbeam/outcome.hpp"
+#include "rotbeam/stop_token.hpp"
 
 #include <CLI/CLI.hpp>
 #include <optional>
@@ -16,21 +18,18 @@ enum ExitCode : int {
   kRuntimeFailure = 1,  // I/O failure or an unexpected internal error
   kBadInput = 2,        // command line or configuration rejected
   kNoImpact = 3,        // `rotbeam impact`: the tip never reached the surface before the end angle
-  // A pass stopped on a diagnosed numerical failure; the partial results are written (docs/cli.md).
-  kPainleve = 4,
-  kStick = 5,
-  kCorrectorNotConverged = 6,
-  kStepUnderflow = 7,
-  kNonFinite = 8,
-  kValidity = 9,
-  kImpactsAccumulate = 10,  // also `chatter`
-  kInterrupted = 130,       // SIGINT/SIGTERM: stopped cleanly, partial results written
+  // 4–10 and 130: a pass stopped on a diagnosed numerical failure or a stop request; the partial
+  // results are written. The code of each failure kind is in the library's table (outcome.hpp).
+  kInterrupted = 130,  // SIGINT/SIGTERM: stopped cleanly, partial results written
 };
 
-/// The exit code of a numerical failure kind (NumericalFailure::kind).
-int exit_code_for_failure(const std::string& kind);
+/// The exit code of a numerical failure kind (the library's one table, failure_info).
+inline int exit_code_for_failure(FailureKind kind) { return failure_info(kind).exit_code; }
 
-/// Installs SIGINT/SIGTERM handlers that ask the running pass to stop (a second signal kills).
+/// The stop token of this process's command: set by SIGINT/SIGTERM once the handlers are installed.
+const StopToken& interrupt_token();
+
+/// Installs SIGINT/SIGTERM handlers that request a stop on interrupt_token() (a second signal kills).
 void install_interrupt_handlers();
 
 /// The CONFIG positional and the repeatable --set option of a case-based subcommand.

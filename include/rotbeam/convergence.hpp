@@ -3,6 +3,8 @@
 #pragma once
 
 #include "rotbeam/config.hpp"
+#include "rotbeam/job_runner.hpp"
+#include "rotbeam/pass.hpp"
 
 #include <nlohmann/json.hpp>
 #include <string>
@@ -30,8 +32,12 @@ struct ConvergenceStudy {
   std::vector<ConvergenceRun> runs;  // the reference first
 };
 
-/// Runs the ladder for `base` (its other settings kept) on `jobs` threads (0: all cores).
-ConvergenceStudy run_convergence(const Config& base, const ConvergenceLadder& ladder, int jobs);
+/// Runs the ladder for `base` (its other settings kept) on `jobs` threads (0: all cores); `stop`
+/// ends it early (the runs not finished carry an `interrupted` failure or none at all);
+/// `on_run_finished` reports progress.
+ConvergenceStudy run_convergence(const Config& base, const ConvergenceLadder& ladder, int jobs,
+                                 const StopToken* stop = nullptr,
+                                 const std::function<void(const JobProgress&)>& on_run_finished = {});
 
 /// The study as JSON: {"reference": label, "runs": [{label, scheme, rtol, …, metrics…, "difference": {…}}]}.
 nlohmann::json convergence_json(const ConvergenceStudy& study);

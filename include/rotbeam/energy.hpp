@@ -1,4 +1,5 @@
-// Energies and hub angular momentum of the filament (SPEC §3, §7), from the precomputed integrals.
+// Energies and hub angular momentum of the foreshortening beam (SPEC §3, §7), from the
+// precomputed integrals:
 //   T2 = ½ q̇ᵀ M q̇            kinetic energy of the motion relative to the hub frame
 //   T1 = ω ∫ (x ẏ − y ẋ) dm   gyroscopic coupling
 //   T0 = ½ ω² ∫ (x² + y²) dm  energy of the rigid spin of the deformed shape
@@ -12,18 +13,15 @@
 
 namespace rotbeam {
 
-struct EnergyTerms {
-  double t0 = 0, t1 = 0, t2 = 0;   // [J]
-  double potential = 0;            // U [J]
-  double kinetic = 0;              // T = T0 + T1 + T2 [J]
-  double jacobi = 0;               // h = T2 − T0 + U [J]
-  double spin_inertia = 0;         // J = ∫ (x² + y²) dm [kg m²]
-  double relative_momentum = 0;    // ∫ (x ẏ − y ẋ) dm [kg m²/s]
-  double angular_momentum = 0;     // H_z = ω J + ∫ (x ẏ − y ẋ) dm [kg m²/s]
-};
-
 /// Evaluates every energy term at (q, q̇). Uses (and overwrites) ws.z and ws.mass.
-EnergyTerms evaluate_energy(const Model& model, const Eigen::Ref<const Eigen::VectorXd>& q,
-                            const Eigen::Ref<const Eigen::VectorXd>& qd, Workspace& ws);
+EnergyTerms evaluate_energy(const ForeshorteningBeam& beam, const Eigen::Ref<const Eigen::VectorXd>& q,
+                            const Eigen::Ref<const Eigen::VectorXd>& qd, ForeshorteningWorkspace& ws);
+
+/// dH_z/dt [N m] at (q, q̇) with acceleration q̈, in closed form from the same integrals:
+///   H_z = ω J(q) + p(q)·q̇,  J = ∫(x² + y²)dm,  p(q)·q̇ = ∫(x ẏ − y ẋ)dm,
+///   dH_z/dt = ω ∇J·q̇ + d/dt(p(q)·q̇)  (O(n³); uses ws.z from the last evaluate_mass at q).
+double angular_momentum_rate(const ForeshorteningBeam& beam, const Eigen::Ref<const Eigen::VectorXd>& q,
+                             const Eigen::Ref<const Eigen::VectorXd>& qd,
+                             const Eigen::Ref<const Eigen::VectorXd>& qdd, ForeshorteningWorkspace& ws);
 
 }  // namespace rotbeam

@@ -1,13 +1,15 @@
 // Impact by momentum balance (SPEC §5, thesis eqn 4-106):
 //   q̇⁺ = q̇⁻ + P M⁻¹∇C,  P = −(1 + e) Ċ⁻ / a,  a = ∇CᵀM⁻¹∇C,  so that Ċ⁺ = −e Ċ⁻.
 // Position and time are unchanged; friction during the impact is neglected.
-// P is the impulse on the tip along X [N s] (negative: the surface pushes the tip back).
+// P is the impulse on the tip along the surface normal [N s] (negative: the surface pushes the tip
+// back).
 #pragma once
 
-#include "rotbeam/dynamics.hpp"
 #include "rotbeam/kinematics.hpp"
 
 namespace rotbeam {
+
+class Surface;
 
 enum class RestitutionModel { yigit, constant };
 enum class RestitutionSpeed { normal, full };
@@ -30,8 +32,8 @@ struct ImpactLaw {
 double restitution(const ImpactLaw& law, double normal_speed, double full_speed);
 
 struct ImpactResult {
-  double vx_before = 0, vx_after = 0;  // V_X = Ċ before and after [m/s]
-  double vy_before = 0, vy_after = 0;  // V_Y [m/s]
+  double vx_before = 0, vx_after = 0;  // normal velocity Ċ before and after (V_X on the plane) [m/s]
+  double vy_before = 0, vy_after = 0;  // tangential slip V_t (V_Y on the plane) [m/s]
   double restitution = 0;              // e used
   double impulse = 0;                  // P [N s]
   double effective_inverse_mass = 0;   // a = ∇CᵀM⁻¹∇C [1/kg]
@@ -41,8 +43,8 @@ struct ImpactResult {
 
 /// Applies the impact law at (t, q) to qd in place. Requires an approaching tip (Ċ⁻ > 0);
 /// throws std::domain_error otherwise (a receding tip has no impact, SPEC §5).
-ImpactResult apply_impact(const Model& model, const ImpactLaw& law, double t,
+ImpactResult apply_impact(const BeamModel& beam, const Surface& surface, const ImpactLaw& law, double t,
                           const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Ref<Eigen::VectorXd> qd,
-                          Workspace& ws, TipKinematics& tip);
+                          BeamWorkspace& ws, TipKinematics& tip);
 
 }  // namespace rotbeam

@@ -8,9 +8,6 @@
 
 namespace rotbeam {
 
-/// Runs the first impact of the configured case.
-FirstImpactResult run_first_impact(const Config& config);
-
 /// {t_s, theta_deg, x_tip_m, y_tip_m, vx_before_m_s, vx_after_m_s, delta_vx_m_s, restitution,
 ///  vy_before_m_s, vy_after_m_s, impulse_n_s, energy_loss_j, steps, rhs_evaluations, config}.
 /// Requires r.found.

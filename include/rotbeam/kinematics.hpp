@@ -1,40 +1,52 @@
-// Tip kinematics and the contact constraint (SPEC §2, §4).
-//   x_t = r_h + L − qᵀISP(1)q/(2L), y_t = S(1)ᵀq           (beam frame, metres)
-//   X_t = x_t cos θ − y_t sin θ,  Y_t = x_t sin θ + y_t cos θ (global frame)
-//   gap C(q, t) = X_t − d ≤ 0, contact when C = 0
-//   ∇C = −(cos θ/L) ISP(1) q − sin θ S(1),  ∂C/∂t = −ω Y_t,  Ċ = ∇Cᵀq̇ + ∂C/∂t = V_X
-//   C̈ = ∇Cᵀq̈ + γ, γ = −(cos θ/L) q̇ᵀISP(1)q̇ + 2ω[(sin θ/L) qᵀISP(1)q̇ − cos θ S(1)ᵀq̇] − ω² X_t
-//   ∂Y_t/∂q = −(sin θ/L) ISP(1) q + cos θ S(1)
-//   Ÿ_t = (∂Y_t/∂q)ᵀq̈ + γ_Y, γ_Y = −(sin θ/L) q̇ᵀISP(1)q̇ − 2ω[(cos θ/L) qᵀISP(1)q̇ + sin θ S(1)ᵀq̇] − ω² Y_t
+// The tip's motion in the global frame and the contact geometry the surface makes of it
+// (SPEC §2, §4). The beam model gives the tip in the hub frame (beam_model.hpp); the hub's
+// rotation R(θ) takes it to the global frame; the surface (surface.hpp) turns that motion into the
+// gap C and its derivatives. This file is the one place where the rotation is applied:
+//   R = R(θ) r,  V = R(θ)(ṙ + ω J r),  A = (∂R/∂q) q̈ + R(θ)(r_quadratic + 2ω J ṙ − ω² r),  J = [0 −1; 1 0]
+// and C̈ = ∇Cᵀq̈ + γ, (tangential slip)˙ = (∂s/∂q)ᵀq̈ + γ_t.
 #pragma once
 
-#include "rotbeam/model.hpp"
+#include "rotbeam/beam_model.hpp"
 
 #include <Eigen/Core>
 
 namespace rotbeam {
 
+class Surface;
+
 struct TipKinematics {
-  explicit TipKinematics(int n) : grad_gap(n), grad_y(n) {}
+  explicit TipKinematics(int n) : hub(n), grad_x(n), grad_y(n), grad_gap(n), grad_tangent(n) {}
+  // The motion (filled by tip_kinematics).
+  double t = 0;              // time [s]
   double theta = 0;          // beam angle [rad]
-  double x = 0, y = 0;       // tip in the beam frame [m]
-  double xd = 0, yd = 0;     // their rates relative to the beam frame [m/s]
+  HubFrameTip hub;           // the tip in the hub frame (x, y, rates, Jacobians)
   double X = 0, Y = 0;       // tip in the global frame [m]
   double VX = 0, VY = 0;     // inertial tip velocity [m/s]
-  double gap = 0;            // C = X_t − d [m]
-  double gap_rate = 0;       // Ċ = V_X [m/s]
-  double gap_time_partial = 0;  // ∂C/∂t = −ω Y_t [m/s]
-  double gamma = 0;          // γ [m/s²]
-  double gamma_y = 0;        // γ_Y [m/s²], the tangential counterpart of γ
-  Eigen::VectorXd grad_gap;  // ∇C (dimensionless)
-  Eigen::VectorXd grad_y;    // ∂Y_t/∂q (dimensionless)
+  double frame_vx = 0, frame_vy = 0;  // ω × R: velocity of the hub-frame point at the tip [m/s]
+  double bias_ax = 0, bias_ay = 0;    // A − (∂R/∂q) q̈ [m/s²]
+  Eigen::VectorXd grad_x, grad_y;     // ∂X/∂q, ∂Y/∂q (dimensionless)
+  // The contact geometry (filled by the surface).
+  double gap = 0;               // C [m] (≤ 0 clear, 0 in contact)
+  double gap_rate = 0;          // Ċ [m/s] (= V_X for the plane)
+  double gap_time_partial = 0;  // ∂C/∂t at fixed q [m/s] (= −ωY_t for the plane)
+  double gamma = 0;             // γ: C̈ = ∇Cᵀq̈ + γ [m/s²]
+  Eigen::VectorXd grad_gap;     // ∇C = ∂C/∂q (dimensionless)
+  double normal_x = 1, normal_y = 0;    // unit normal at the contact point, pointing into the surface
+  double tangent_x = 0, tangent_y = 1;  // unit tangent, the normal turned +90° (the sense of rotation)
+  double surface_vx = 0, surface_vy = 0;  // the surface's own velocity at the contact point [m/s]
+  double slip_speed = 0;        // V_t: tangential tip velocity relative to the surface [m/s]
+  Eigen::VectorXd grad_tangent; // ∂V_t/∂q̇ = (∂R/∂q)ᵀ t, the direction of friction's generalised force
+  double gamma_tangent = 0;     // V̇_t = grad_tangentᵀ q̈ + γ_t [m/s²]
 };
 
-/// Gap C(q, t) = X_t − d [m] (cheap: no gradients).
-double gap(const Model& model, double t, const Eigen::Ref<const Eigen::VectorXd>& q);
-
 /// Fills every field of `out` at (t, q, q̇). Allocates nothing.
-void tip_kinematics(const Model& model, double t, const Eigen::Ref<const Eigen::VectorXd>& q,
+void tip_kinematics(const BeamModel& beam, const Surface& surface, double t, const Eigen::Ref<const Eigen::VectorXd>& q,
                     const Eigen::Ref<const Eigen::VectorXd>& qd, TipKinematics& out);
+
+/// Gap C(q, t) [m] (cheap: no gradients).
+double gap(const BeamModel& beam, const Surface& surface, double t, const Eigen::Ref<const Eigen::VectorXd>& q);
+
+/// The tip position in the global frame at (t, q) [m].
+Eigen::Vector2d tip_position(const BeamModel& beam, double t, const Eigen::Ref<const Eigen::VectorXd>& q);
 
 }  // namespace rotbeam

@@ -4,7 +4,7 @@
 // eigenvectors in modal coordinates (normalised to unit length), w_k(ξ) = S(ξ)ᵀ φ_k.
 #pragma once
 
-#include "rotbeam/model.hpp"
+#include "rotbeam/foreshortening_beam.hpp"
 
 #include <Eigen/Core>
 #include <vector>
@@ -17,12 +17,12 @@ struct ModalAnalysis {
 };
 
 /// Modes of `model` (its own ω).
-ModalAnalysis modal_analysis(const Model& model);
+ModalAnalysis modal_analysis(const ForeshorteningBeam& model);
 
 /// The default speeds of `rotbeam modes` [rpm]: 0, the Table 5-2 speeds and the case's own, ascending.
 std::vector<double> default_mode_speeds_rpm(double case_speed_rpm);
 
 /// Modes at each speed [rpm] for the beam of `base` (rows: speeds, columns: modes) [Hz].
-Eigen::MatrixXd frequencies_versus_speed(const PhysicalParameters& base, const std::vector<double>& speeds_rpm);
+Eigen::MatrixXd frequencies_versus_speed(const BeamParameters& base, const std::vector<double>& speeds_rpm);
 
 }  // namespace rotbeam

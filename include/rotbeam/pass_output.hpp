@@ -1,9 +1,13 @@
-// Files of a pass (SPEC §7): history.csv, events.csv, summary.json, each written atomically.
+// Files of a pass (SPEC §7): history.csv, events.csv, summary.json. The rows and events stream to
+// disk as the pass produces them (PassFiles, a PassSink), so memory stays bounded whatever the
+// length of the run; summary.json is written last, atomically, so a folder holds a summary only
+// beside the complete files of the same run.
 #pragma once
 
 #include "rotbeam/config.hpp"
 #include "rotbeam/pass.hpp"
 
+#include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -12,17 +16,56 @@ namespace rotbeam {
 
 /// Column names of history.csv for n modes.
 std::string history_header(int n);
+/// Column names of events.csv.
+std::string events_header();
+/// One history.csv line (with its newline) appended to `out`.
+void append_history_line(std::string& out, const HistoryRow& row);
+/// One events.csv line (with its newline) appended to `out`.
+void append_event_line(std::string& out, const PassEvent& event);
+/// The whole files of an in-memory result.
 std::string history_csv(const PassResult& result, int n);
 std::string events_csv(const PassResult& result);
-/// summary.json: the metrics, contact intervals, warnings, failure (or null) and the resolved config.
-nlohmann::json summary_json(const PassResult& result, const Config& config);
+/// summary.json: the metrics, contact intervals, warnings, failure (or null), the surface as it
+/// describes itself, and the resolved config.
+nlohmann::json summary_json(const PassResult& result, const Config& config, const Surface& surface);
 
 /// Creates `dir` if needed and checks that files can be created in it (before a long run).
 /// Throws std::runtime_error naming the path when it cannot.
 void prepare_output_folder(const std::filesystem::path& dir);
 
-/// Creates `dir` if needed and writes the three files atomically (summary.json last).
-/// Throws std::runtime_error naming the path when it cannot.
-void write_pass_outputs(const std::filesystem::path& dir, const PassResult& result, const Config& config);
+/// Streams a pass into `dir`: history.csv and events.csv are written into temporaries beside their
+/// final names as the rows and events arrive, and commit() renames them into place and then writes
+/// summary.json. An older summary.json in `dir` is removed at construction; a writer destroyed
+/// without commit removes its temporaries. Throws std::runtime_error naming the path on I/O errors.
+class PassFiles final : public PassSink {
+public:
+  PassFiles(const std::filesystem::path& dir, int n);
+  ~PassFiles() override;
+  PassFiles(const PassFiles&) = delete;
+  PassFiles& operator=(const PassFiles&) = delete;
+
+  void row(const HistoryRow& row) override;
+  void event(const PassEvent& event) override;
+  /// Finishes the files of `result` (which ran with this writer as its sink).
+  void commit(const PassResult& result, const Config& config, const Surface& surface);
+
+private:
+  struct Stream {
+    std::filesystem::path final_path, temporary_path;
+    std::FILE* file = nullptr;
+    std::string buffer;
+  };
+  void open(Stream& s, const std::string& name, const std::string& header);
+  void flush(Stream& s);
+  void close(Stream& s);
+
+  std::filesystem::path dir_;
+  Stream history_, events_;
+  bool committed_ = false;
+};
+
+/// Writes the files of a finished in-memory result (summary.json last).
+void write_pass_outputs(const std::filesystem::path& dir, const PassResult& result, const Config& config,
+                        const Surface& surface);
 
 }  // namespace rotbeam

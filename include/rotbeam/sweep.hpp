@@ -3,6 +3,7 @@
 #pragma once
 
 #include "rotbeam/config.hpp"
+#include "rotbeam/job_runner.hpp"
 
 #include <filesystem>
 #include <functional>
@@ -52,6 +53,7 @@ struct SweepOptions {
   std::vector<std::string> base_overrides;
   std::filesystem::path dir;
   int jobs = 0;  // 0: all cores
+  const StopToken* stop = nullptr;  // a requested stop ends every running case and starts no other
   std::function<void(const SweepProgress&)> on_case_finished;  // called under a lock
 };
 

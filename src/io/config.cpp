@@ -1,5 +1,7 @@
 #include "rotbeam/config.hpp"
 
+#include "rotbeam/kinematics.hpp"
+
 #include <toml++/toml.h>
 
 #include <algorithm>
@@ -122,77 +124,80 @@ using Setter = std::function<void(Parsed&, const std::string&, const toml::node&
 
 const std::vector<std::pair<std::string, Setter>>& schema() {
   static const std::vector<std::pair<std::string, Setter>> keys = {
-      {"beam.length_m", [](Parsed& p, auto& k, auto& n) { p.config.physical.length_m = positive(k, n); }},
-      {"beam.diameter_m", [](Parsed& p, auto& k, auto& n) { p.config.physical.diameter_m = positive(k, n); }},
-      {"beam.density_kg_m3", [](Parsed& p, auto& k, auto& n) { p.config.physical.density_kg_m3 = positive(k, n); }},
-      {"beam.youngs_modulus_pa", [](Parsed& p, auto& k, auto& n) { p.config.physical.youngs_modulus_pa = positive(k, n); }},
+      {"beam.length_m", [](Parsed& p, auto& k, auto& n) { p.config.beam.length_m = positive(k, n); }},
+      {"beam.diameter_m", [](Parsed& p, auto& k, auto& n) { p.config.beam.diameter_m = positive(k, n); }},
+      {"beam.density_kg_m3", [](Parsed& p, auto& k, auto& n) { p.config.beam.density_kg_m3 = positive(k, n); }},
+      {"beam.youngs_modulus_pa", [](Parsed& p, auto& k, auto& n) { p.config.beam.youngs_modulus_pa = positive(k, n); }},
       {"beam.modes",
        [](Parsed& p, auto& k, auto& n) {
-         p.config.physical.modes = integer_in(k, n, 1, kMaxModes);
+         p.config.beam.modes = integer_in(k, n, 1, kMaxModes);
          p.modes_node = &n;
        }},
-      {"hub.radius_m", [](Parsed& p, auto& k, auto& n) { p.config.physical.hub_radius_m = number_in(k, n, 0.0, INFINITY, false, true); }},
-      {"hub.speed_rpm", [](Parsed& p, auto& k, auto& n) { p.config.physical.speed_rpm = positive(k, n); }},
+      {"hub.radius_m", [](Parsed& p, auto& k, auto& n) { p.config.beam.hub_radius_m = number_in(k, n, 0.0, INFINITY, false, true); }},
+      {"hub.speed_rpm", [](Parsed& p, auto& k, auto& n) { p.config.beam.speed_rpm = positive(k, n); }},
       {"surface.depth_fraction",
        [](Parsed& p, auto& k, auto& n) {
-         p.config.physical.depth_fraction = number_in(k, n, 0.0, 1.0, true, true);
+         p.config.surface.depth_fraction = number_in(k, n, 0.0, 1.0, true, true);
          p.depth_node = &n;
        }},
-      {"surface.friction", [](Parsed& p, auto& k, auto& n) { p.config.physical.friction = number_in(k, n, 0.0, INFINITY, false, true); }},
+      {"surface.friction", [](Parsed& p, auto& k, auto& n) { p.config.contact.friction.mu = number_in(k, n, 0.0, INFINITY, false, true); }},
       {"impact.restitution",
        [](Parsed& p, auto& k, auto& n) {
          if (n.is_string()) {
            one_of(k, n, {"yigit"});
-           p.config.impact.model = RestitutionModel::yigit;
+           p.config.contact.impact.model = RestitutionModel::yigit;
          } else if (n.is_number()) {
-           p.config.impact.model = RestitutionModel::constant;
-           p.config.impact.constant = number_in(k, n, 0.0, 1.0, false, false);
+           p.config.contact.impact.model = RestitutionModel::constant;
+           p.config.contact.impact.constant = number_in(k, n, 0.0, 1.0, false, false);
          } else {
            fail(k, n, "must be \"yigit\" or a number in [0, 1]");
          }
        }},
-      {"impact.restitution_cap", [](Parsed& p, auto& k, auto& n) { p.config.impact.cap = number_in(k, n, 0.0, 1.0, false, false); }},
-      {"impact.plastic_below_m_s", [](Parsed& p, auto& k, auto& n) { p.config.impact.plastic_below_m_s = number_in(k, n, 0.0, INFINITY, false, true); }},
+      {"impact.restitution_cap", [](Parsed& p, auto& k, auto& n) { p.config.contact.impact.cap = number_in(k, n, 0.0, 1.0, false, false); }},
+      {"impact.plastic_below_m_s", [](Parsed& p, auto& k, auto& n) { p.config.contact.impact.plastic_below_m_s = number_in(k, n, 0.0, INFINITY, false, true); }},
       {"initial.start",
        [](Parsed& p, auto& k, auto& n) {
-         p.config.start = one_of(k, n, {"rigid", "flexible"});
+         p.config.initial.start = one_of(k, n, {"rigid", "flexible"});
          p.start_given = true;
        }},
       {"initial.modal_velocity",
        [](Parsed& p, auto& k, auto& n) {
-         p.config.modal_velocity = number_array(k, n);
+         p.config.initial.modal_velocity = number_array(k, n);
          p.velocity_node = &n;
        }},
       {"initial.modal_displacement",
        [](Parsed& p, auto& k, auto& n) {
-         p.config.modal_displacement = number_array(k, n);
+         p.config.initial.modal_displacement = number_array(k, n);
          p.displacement_node = &n;
        }},
-      {"simulation.scheme", [](Parsed& p, auto& k, auto& n) { p.config.scheme = one_of(k, n, {"adaptive", "thesis"}); }},
+      {"simulation.scheme",
+       [](Parsed& p, auto& k, auto& n) {
+         p.config.simulation.scheme = one_of(k, n, {"adaptive", "thesis"}) == "thesis" ? Scheme::thesis : Scheme::adaptive;
+       }},
       {"simulation.end_angle_deg",
        [](Parsed& p, auto& k, auto& n) {
-         p.config.end_angle_deg = number_in(k, n, -90.0, 270.0, true, false);
+         p.config.simulation.end_angle_deg = number_in(k, n, -90.0, 270.0, true, false);
          p.end_angle_node = &n;
        }},
-      {"simulation.rtol", [](Parsed& p, auto& k, auto& n) { p.config.rtol = number_in(k, n, 0.0, 1.0, true, true); }},
-      {"simulation.atol", [](Parsed& p, auto& k, auto& n) { p.config.atol = positive(k, n); }},
-      {"simulation.max_step_s", [](Parsed& p, auto& k, auto& n) { p.config.max_step_s = number_in(k, n, 0.0, 1e-2, true, false); }},
-      {"simulation.free_step_s", [](Parsed& p, auto& k, auto& n) { p.config.free_step_s = number_in(k, n, 0.0, 1e-3, true, false); }},
-      {"simulation.contact_step_s", [](Parsed& p, auto& k, auto& n) { p.config.contact_step_s = number_in(k, n, 0.0, 1e-4, true, false); }},
-      {"simulation.fine_contact_step_s", [](Parsed& p, auto& k, auto& n) { p.config.fine_contact_step_s = number_in(k, n, 0.0, 1e-4, true, false); }},
-      {"simulation.fine_below_n", [](Parsed& p, auto& k, auto& n) { p.config.fine_below_n = number_in(k, n, 0.0, INFINITY, false, true); }},
-      {"simulation.corrector_tolerance", [](Parsed& p, auto& k, auto& n) { p.config.corrector_tolerance = number_in(k, n, 0.0, 1.0, true, true); }},
+      {"simulation.rtol", [](Parsed& p, auto& k, auto& n) { p.config.simulation.rtol = number_in(k, n, 0.0, 1.0, true, true); }},
+      {"simulation.atol", [](Parsed& p, auto& k, auto& n) { p.config.simulation.atol = positive(k, n); }},
+      {"simulation.max_step_s", [](Parsed& p, auto& k, auto& n) { p.config.simulation.max_step_s = number_in(k, n, 0.0, 1e-2, true, false); }},
+      {"simulation.free_step_s", [](Parsed& p, auto& k, auto& n) { p.config.simulation.free_step_s = number_in(k, n, 0.0, 1e-3, true, false); }},
+      {"simulation.contact_step_s", [](Parsed& p, auto& k, auto& n) { p.config.simulation.contact_step_s = number_in(k, n, 0.0, 1e-4, true, false); }},
+      {"simulation.fine_contact_step_s", [](Parsed& p, auto& k, auto& n) { p.config.simulation.fine_contact_step_s = number_in(k, n, 0.0, 1e-4, true, false); }},
+      {"simulation.fine_below_n", [](Parsed& p, auto& k, auto& n) { p.config.simulation.fine_below_n = number_in(k, n, 0.0, INFINITY, false, true); }},
+      {"simulation.corrector_tolerance", [](Parsed& p, auto& k, auto& n) { p.config.simulation.corrector_tolerance = number_in(k, n, 0.0, 1.0, true, true); }},
       {"simulation.corrector_max_iterations",
-       [](Parsed& p, auto& k, auto& n) { p.config.corrector_max_iterations = integer_in(k, n, 1, 10000); }},
-      {"simulation.max_impacts", [](Parsed& p, auto& k, auto& n) { p.config.max_impacts = integer_in(k, n, 1, 100000000); }},
-      {"simulation.deflection_warning_ratio", [](Parsed& p, auto& k, auto& n) { p.config.deflection_warning_ratio = positive(k, n); }},
-      {"simulation.deflection_limit_is_error", [](Parsed& p, auto& k, auto& n) { p.config.deflection_limit_is_error = boolean(k, n); }},
-      {"output.interval_s", [](Parsed& p, auto& k, auto& n) { p.config.output_interval_s = number_in(k, n, 0.0, INFINITY, false, true); }},
-      {"compat.thesis_forces", [](Parsed& p, auto& k, auto& n) { p.config.thesis_forces = boolean(k, n); }},
-      {"compat.thesis_dcdt", [](Parsed& p, auto& k, auto& n) { p.config.thesis_dcdt = boolean(k, n); }},
+       [](Parsed& p, auto& k, auto& n) { p.config.simulation.corrector_max_iterations = integer_in(k, n, 1, 10000); }},
+      {"simulation.max_impacts", [](Parsed& p, auto& k, auto& n) { p.config.simulation.max_impacts = integer_in(k, n, 1, 100000000); }},
+      {"simulation.deflection_warning_ratio", [](Parsed& p, auto& k, auto& n) { p.config.simulation.deflection_warning_ratio = positive(k, n); }},
+      {"simulation.deflection_limit_is_error", [](Parsed& p, auto& k, auto& n) { p.config.simulation.deflection_limit_is_error = boolean(k, n); }},
+      {"output.interval_s", [](Parsed& p, auto& k, auto& n) { p.config.simulation.output_interval_s = number_in(k, n, 0.0, INFINITY, false, true); }},
+      {"compat.thesis_forces", [](Parsed& p, auto& k, auto& n) { p.config.contact.friction.thesis_forces = boolean(k, n); }},
+      {"compat.thesis_dcdt", [](Parsed& p, auto& k, auto& n) { p.config.simulation.thesis_dcdt = boolean(k, n); }},
       {"compat.restitution_speed",
        [](Parsed& p, auto& k, auto& n) {
-         p.config.impact.speed = one_of(k, n, {"normal", "full"}) == "full" ? RestitutionSpeed::full : RestitutionSpeed::normal;
+         p.config.contact.impact.speed = one_of(k, n, {"normal", "full"}) == "full" ? RestitutionSpeed::full : RestitutionSpeed::normal;
        }},
   };
   return keys;
@@ -276,7 +281,8 @@ Config resolve(toml::table& root, const std::vector<std::string>& overrides) {
     if (node) setter(p, k, *node);
   }
   Config& c = p.config;
-  const int n = c.physical.modes;
+  const int n = c.beam.modes;
+  InitialSettings& ini = c.initial;
   auto check_length = [&](std::vector<double>& v, const toml::node* node, const char* key) {
     if (!node) {
       v.assign(n, 0.0);
@@ -285,39 +291,35 @@ Config resolve(toml::table& root, const std::vector<std::string>& overrides) {
     if (static_cast<int>(v.size()) != n)
       fail(key, *node, "must have beam.modes = " + std::to_string(n) + " values, got " + std::to_string(v.size()));
   };
-  check_length(c.modal_velocity, p.velocity_node, "initial.modal_velocity");
-  check_length(c.modal_displacement, p.displacement_node, "initial.modal_displacement");
-  const bool disturbed = std::any_of(c.modal_velocity.begin(), c.modal_velocity.end(), [](double v) { return v != 0.0; }) ||
-                         std::any_of(c.modal_displacement.begin(), c.modal_displacement.end(), [](double v) { return v != 0.0; });
+  check_length(ini.modal_velocity, p.velocity_node, "initial.modal_velocity");
+  check_length(ini.modal_displacement, p.displacement_node, "initial.modal_displacement");
+  const bool disturbed = std::any_of(ini.modal_velocity.begin(), ini.modal_velocity.end(), [](double v) { return v != 0.0; }) ||
+                         std::any_of(ini.modal_displacement.begin(), ini.modal_displacement.end(), [](double v) { return v != 0.0; });
   if (disturbed) {
-    if (p.start_given && c.start == "rigid")
+    if (p.start_given && ini.start == "rigid")
       throw ConfigError("initial.start = \"rigid\" contradicts a non-zero initial.modal_velocity or "
                         "initial.modal_displacement (a rigid start has q = q̇ = 0)");
-    c.start = "flexible";
+    ini.start = "flexible";
   }
-  // A flexible start must begin clear of the surface.
-  if (c.start == "flexible") {
-    const Model probe = make_model(c.physical);
-    Eigen::VectorXd q0(n);
-    for (int i = 0; i < n; ++i) q0[i] = c.modal_displacement[i];
-    const double x_tip = c.physical.hub_radius_m + c.physical.length_m -
-                         q0.dot(probe.integrals->isp_tip * q0) / (2.0 * c.physical.length_m);
-    const double c0 = x_tip * std::cos(probe.theta0) - probe.integrals->s_tip.dot(q0) * std::sin(probe.theta0) -
-                      probe.surface_distance;
+  // The start the configuration describes must be possible (checked through the beam and surface).
+  const ForeshorteningBeam beam = make_beam(c.beam);
+  const std::shared_ptr<const Surface> surface = make_surface(c.surface, beam);
+  if (ini.start == "flexible") {
+    // A flexible start must begin clear of the surface.
+    const Eigen::VectorXd q0 = Eigen::Map<const Eigen::VectorXd>(ini.modal_displacement.data(), n);
+    const double c0 = gap(beam, *surface, 0.0, q0);
     if (c0 >= 0.0) {
       const std::string what = "the initial shape already reaches the surface (gap " + format_number(c0) + " m >= 0)";
       if (p.displacement_node) fail("initial.modal_displacement", *p.displacement_node, what);
       throw ConfigError(what);
     }
-  }
-  // The surface must be reachable before the end angle for a rigid start.
-  if (c.start == "rigid") {
-    const Model probe = make_model(c.physical);
-    const double theta_star = probe.rigid_contact_angle() * 180.0 / M_PI;
-    if (theta_star >= c.end_angle_deg) {
+  } else {
+    // A rigid start must reach the surface before the end angle.
+    const double theta_star = surface->first_contact_angle(beam.tip_radius(), beam.theta(0.0)) * 180.0 / M_PI;
+    if (!(theta_star < c.simulation.end_angle_deg)) {
       const toml::node* node = p.end_angle_node ? p.end_angle_node : p.depth_node;
       const std::string what = "the rigid tip reaches the surface only at " + format_number(theta_star) +
-                               " deg, after the end angle " + format_number(c.end_angle_deg) + " deg";
+                               " deg, after the end angle " + format_number(c.simulation.end_angle_deg) + " deg";
       if (node) fail(p.end_angle_node ? "simulation.end_angle_deg" : "surface.depth_fraction", *node, what);
       throw ConfigError(what);
     }
@@ -327,79 +329,42 @@ Config resolve(toml::table& root, const std::vector<std::string>& overrides) {
 
 }  // namespace
 
-InitialConditions Config::initial_conditions() const {
-  InitialConditions ic;
-  ic.rigid_start = start == "rigid";
-  const int n = physical.modes;
-  ic.q0 = Eigen::VectorXd::Zero(n);
-  ic.qd0 = Eigen::VectorXd::Zero(n);
-  for (int i = 0; i < n && i < static_cast<int>(modal_displacement.size()); ++i) ic.q0[i] = modal_displacement[i];
-  for (int i = 0; i < n && i < static_cast<int>(modal_velocity.size()); ++i) ic.qd0[i] = modal_velocity[i];
-  return ic;
-}
-
-double Config::end_angle_rad() const { return end_angle_deg * M_PI / 180.0; }
-
-PassOptions Config::pass_options() const {
-  PassOptions o;
-  o.end_angle_rad = end_angle_rad();
-  o.free_step_s = free_step_s;
-  o.contact_step_s = contact_step_s;
-  o.fine_contact_step_s = fine_contact_step_s;
-  o.fine_below_n = fine_below_n;
-  o.corrector_tolerance = corrector_tolerance;
-  o.corrector_max_iterations = corrector_max_iterations;
-  o.thesis_dcdt = thesis_dcdt;
-  o.output_interval_s = output_interval_s;
-  o.deflection_warning_ratio = deflection_warning_ratio;
-  o.max_impacts = max_impacts;
-  o.deflection_limit_is_error = deflection_limit_is_error;
-  o.rtol = rtol;
-  o.atol = atol;
-  o.max_step_s = max_step_s;
-  return o;
-}
-
-PassResult Config::run_pass() const {
-  const Model model = make_model(physical);
-  if (scheme == "thesis") return run_thesis_pass(model, impact, friction_model(), initial_conditions(), pass_options());
-  return run_adaptive_pass(model, impact, friction_model(), initial_conditions(), pass_options());
-}
-
-FrictionModel Config::friction_model() const { return FrictionModel{physical.friction, thesis_forces}; }
-
 nlohmann::json Config::to_json() const {
+  const ImpactLaw& impact = contact.impact;
+  const PassOptions& sim = simulation;
   nlohmann::json j;
-  j["beam"] = {{"length_m", physical.length_m},
-               {"diameter_m", physical.diameter_m},
-               {"density_kg_m3", physical.density_kg_m3},
-               {"youngs_modulus_pa", physical.youngs_modulus_pa},
-               {"modes", physical.modes}};
-  j["hub"] = {{"radius_m", physical.hub_radius_m}, {"speed_rpm", physical.speed_rpm}};
-  j["surface"] = {{"depth_fraction", physical.depth_fraction}, {"friction", physical.friction}};
+  j["beam"] = {{"length_m", beam.length_m},
+               {"diameter_m", beam.diameter_m},
+               {"density_kg_m3", beam.density_kg_m3},
+               {"youngs_modulus_pa", beam.youngs_modulus_pa},
+               {"modes", beam.modes}};
+  j["hub"] = {{"radius_m", beam.hub_radius_m}, {"speed_rpm", beam.speed_rpm}};
+  j["surface"] = {{"depth_fraction", surface.depth_fraction}, {"friction", contact.friction.mu}};
   j["impact"] = {{"restitution_cap", impact.cap}, {"plastic_below_m_s", impact.plastic_below_m_s}};
   if (impact.model == RestitutionModel::yigit)
     j["impact"]["restitution"] = "yigit";
   else
     j["impact"]["restitution"] = impact.constant;
-  j["initial"] = {{"start", start}, {"modal_velocity", modal_velocity}, {"modal_displacement", modal_displacement}};
-  j["simulation"] = {{"scheme", scheme},
-                     {"end_angle_deg", end_angle_deg},
-                     {"rtol", rtol},
-                     {"atol", atol},
-                     {"max_step_s", max_step_s},
-                     {"free_step_s", free_step_s},
-                     {"contact_step_s", contact_step_s},
-                     {"fine_contact_step_s", fine_contact_step_s},
-                     {"fine_below_n", fine_below_n},
-                     {"corrector_tolerance", corrector_tolerance},
-                     {"corrector_max_iterations", corrector_max_iterations},
-                     {"max_impacts", max_impacts},
-                     {"deflection_warning_ratio", deflection_warning_ratio},
-                     {"deflection_limit_is_error", deflection_limit_is_error}};
-  j["output"] = {{"interval_s", output_interval_s}};
-  j["compat"] = {{"thesis_forces", thesis_forces},
-                 {"thesis_dcdt", thesis_dcdt},
+  j["initial"] = {{"start", initial.start},
+                  {"modal_velocity", initial.modal_velocity},
+                  {"modal_displacement", initial.modal_displacement}};
+  j["simulation"] = {{"scheme", scheme_name(sim.scheme)},
+                     {"end_angle_deg", sim.end_angle_deg},
+                     {"rtol", sim.rtol},
+                     {"atol", sim.atol},
+                     {"max_step_s", sim.max_step_s},
+                     {"free_step_s", sim.free_step_s},
+                     {"contact_step_s", sim.contact_step_s},
+                     {"fine_contact_step_s", sim.fine_contact_step_s},
+                     {"fine_below_n", sim.fine_below_n},
+                     {"corrector_tolerance", sim.corrector_tolerance},
+                     {"corrector_max_iterations", sim.corrector_max_iterations},
+                     {"max_impacts", sim.max_impacts},
+                     {"deflection_warning_ratio", sim.deflection_warning_ratio},
+                     {"deflection_limit_is_error", sim.deflection_limit_is_error}};
+  j["output"] = {{"interval_s", sim.output_interval_s}};
+  j["compat"] = {{"thesis_forces", contact.friction.thesis_forces},
+                 {"thesis_dcdt", sim.thesis_dcdt},
                  {"restitution_speed", impact.speed == RestitutionSpeed::full ? "full" : "normal"}};
   return j;
 }

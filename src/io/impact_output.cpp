@@ -4,11 +4,6 @@
 
 namespace rotbeam {
 
-FirstImpactResult run_first_impact(const Config& config) {
-  const Model model = make_model(config.physical);
-  return first_impact(model, config.impact, config.initial_conditions(), config.end_angle_rad(), config.free_step_s);
-}
-
 nlohmann::json impact_json(const FirstImpactResult& r, const Config& config) {
   const ImpactResult& im = r.impact;
   nlohmann::json j;

@@ -3,15 +3,19 @@
 #include "rotbeam/atomic_file.hpp"
 #include "rotbeam/detail/csv.hpp"
 
+#include <cerrno>
 #include <cmath>
-#include <cstdio>
-#include <sstream>
+#include <cstring>
+#include <system_error>
+#include <unistd.h>
 
 namespace rotbeam {
 
 using detail::csv_field;
 
 namespace {
+
+constexpr std::size_t kFlushBytes = 1 << 20;
 
 void put(std::string& out, double v) {
   char buf[40];
@@ -25,6 +29,10 @@ void put(std::string& out, double v) {
 
 nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
+std::string io_error(const std::filesystem::path& path, const char* what, int err) {
+  return path.string() + ": " + what + " (" + std::generic_category().message(err) + ")";
+}
+
 }  // namespace
 
 std::string history_header(int n) {
@@ -35,56 +43,64 @@ std::string history_header(int n) {
   return h;
 }
 
+std::string events_header() {
+  return "t_s,theta_deg,kind,y_tip_m,vx_before_m_s,vx_after_m_s,restitution,impulse_n_s,detail";
+}
+
+void append_history_line(std::string& out, const HistoryRow& r) {
+  put(out, r.t);
+  out += ',';
+  put(out, r.theta * 180.0 / M_PI);
+  out += ',';
+  out += phase_name(r.phase);
+  for (double v : {r.x_tip, r.y_tip, r.gap, r.vx, r.vy, r.normal_force, r.friction_force, r.lambda}) {
+    out += ',';
+    put(out, v);
+  }
+  for (Eigen::Index i = 0; i < r.q.size(); ++i) {
+    out += ',';
+    put(out, r.q[i]);
+  }
+  for (Eigen::Index i = 0; i < r.qd.size(); ++i) {
+    out += ',';
+    put(out, r.qd[i]);
+  }
+  out += ',';
+  put(out, r.jacobi);
+  out += ',';
+  put(out, r.hub_torque);
+  out += '\n';
+}
+
+void append_event_line(std::string& out, const PassEvent& e) {
+  put(out, e.t);
+  out += ',';
+  put(out, e.theta * 180.0 / M_PI);
+  out += ',';
+  out += event_name(e.kind);
+  for (double v : {e.y_tip, e.vx_before, e.vx_after, e.restitution, e.impulse}) {
+    out += ',';
+    if (!std::isnan(v)) put(out, v);  // empty: not defined for this kind of event
+  }
+  out += ',' + csv_field(e.detail) + '\n';
+}
+
 std::string history_csv(const PassResult& result, int n) {
   std::string out = history_header(n) + "\n";
   out.reserve(result.history.size() * (200 + 50 * n));
-  for (const HistoryRow& r : result.history) {
-    const double vals[] = {r.t, r.theta * 180.0 / M_PI};
-    put(out, vals[0]);
-    out += ',';
-    put(out, vals[1]);
-    out += ',';
-    out += phase_name(r.phase);
-    for (double v : {r.x_tip, r.y_tip, r.gap, r.vx, r.vy, r.normal_force, r.friction_force, r.lambda}) {
-      out += ',';
-      put(out, v);
-    }
-    for (int i = 0; i < n; ++i) {
-      out += ',';
-      put(out, r.q[i]);
-    }
-    for (int i = 0; i < n; ++i) {
-      out += ',';
-      put(out, r.qd[i]);
-    }
-    out += ',';
-    put(out, r.jacobi);
-    out += ',';
-    put(out, r.hub_torque);
-    out += '\n';
-  }
+  for (const HistoryRow& r : result.history) append_history_line(out, r);
   return out;
 }
 
 std::string events_csv(const PassResult& result) {
-  std::string out = "t_s,theta_deg,kind,y_tip_m,vx_before_m_s,vx_after_m_s,restitution,impulse_n_s,detail\n";
-  for (const PassEvent& e : result.events) {
-    put(out, e.t);
-    out += ',';
-    put(out, e.theta * 180.0 / M_PI);
-    out += ',' + e.kind + ',';
-    put(out, e.y_tip);
-    for (double v : {e.vx_before, e.vx_after, e.restitution, e.impulse}) {
-      out += ',';
-      if (!std::isnan(v)) put(out, v);
-    }
-    out += ',' + csv_field(e.detail) + '\n';
-  }
+  std::string out = events_header() + "\n";
+  for (const PassEvent& e : result.events) append_event_line(out, e);
   return out;
 }
 
-nlohmann::json summary_json(const PassResult& result, const Config& config) {
+nlohmann::json summary_json(const PassResult& result, const Config& config, const Surface& surface) {
   const PassSummary& s = result.summary;
+  const PassOptions& sim = config.simulation;
   nlohmann::json j;
   j["impacts"] = s.impacts;
   j["plastic_impacts"] = s.plastic_impacts;
@@ -102,14 +118,14 @@ nlohmann::json summary_json(const PassResult& result, const Config& config) {
   j["rhs_evaluations"] = s.rhs_evaluations;
   j["corrector_iterations_max"] = s.corrector_iterations_max;
   j["wall_time_s"] = s.wall_time_s;
-  j["scheme"] = s.scheme;
-  if (s.scheme == "thesis")
-    j["tolerances"] = {{"free_step_s", config.free_step_s},
-                       {"contact_step_s", config.contact_step_s},
-                       {"fine_contact_step_s", config.fine_contact_step_s},
-                       {"corrector_tolerance", config.corrector_tolerance}};
+  j["scheme"] = scheme_name(s.scheme);
+  if (s.scheme == Scheme::thesis)
+    j["tolerances"] = {{"free_step_s", sim.free_step_s},
+                       {"contact_step_s", sim.contact_step_s},
+                       {"fine_contact_step_s", sim.fine_contact_step_s},
+                       {"corrector_tolerance", sim.corrector_tolerance}};
   else
-    j["tolerances"] = {{"rtol", config.rtol}, {"atol", config.atol}, {"max_step_s", config.max_step_s}};
+    j["tolerances"] = {{"rtol", sim.rtol}, {"atol", sim.atol}, {"max_step_s", sim.max_step_s}};
   j["warnings"] = s.warnings;
   nlohmann::json intervals = nlohmann::json::array();
   for (const ContactInterval& c : s.contact_intervals)
@@ -121,12 +137,13 @@ nlohmann::json summary_json(const PassResult& result, const Config& config) {
                          {"y_end_m", c.y_end}});
   j["contact_intervals"] = intervals;
   if (result.failure)
-    j["failure"] = {{"kind", result.failure->kind},
+    j["failure"] = {{"kind", failure_name(result.failure->kind)},
                     {"t_s", result.failure->t},
                     {"theta_deg", result.failure->theta * 180.0 / M_PI},
                     {"message", result.failure->message}};
   else
     j["failure"] = nullptr;
+  j["surface"] = surface.describe();
   j["config"] = config.to_json();
   return j;
 }
@@ -142,12 +159,74 @@ void prepare_output_folder(const std::filesystem::path& dir) {
   std::filesystem::remove(probe, ec);
 }
 
-void write_pass_outputs(const std::filesystem::path& dir, const PassResult& result, const Config& config) {
+PassFiles::PassFiles(const std::filesystem::path& dir, int n) : dir_(dir) {
   prepare_output_folder(dir);
-  const int n = config.physical.modes;
-  write_file_atomically(dir / "history.csv", history_csv(result, n));
-  write_file_atomically(dir / "events.csv", events_csv(result));
-  write_file_atomically(dir / "summary.json", summary_json(result, config).dump(2) + "\n");
+  std::error_code ec;
+  std::filesystem::remove(dir / "summary.json", ec);  // the folder is not complete until commit()
+  if (ec) throw std::runtime_error((dir / "summary.json").string() + ": cannot remove the older summary (" + ec.message() + ")");
+  open(history_, "history.csv", history_header(n));
+  open(events_, "events.csv", events_header());
+}
+
+PassFiles::~PassFiles() {
+  if (committed_) return;
+  for (Stream* s : {&history_, &events_}) {
+    if (s->file) std::fclose(s->file);
+    s->file = nullptr;
+    if (!s->temporary_path.empty()) std::remove(s->temporary_path.c_str());
+  }
+}
+
+void PassFiles::open(Stream& s, const std::string& name, const std::string& header) {
+  s.final_path = dir_ / name;
+  s.temporary_path = dir_ / (name + ".tmp." + std::to_string(::getpid()));
+  s.file = std::fopen(s.temporary_path.c_str(), "wb");
+  if (!s.file) throw std::runtime_error(io_error(s.final_path, "cannot write", errno));
+  s.buffer.reserve(kFlushBytes + 4096);
+  s.buffer = header + "\n";
+}
+
+void PassFiles::flush(Stream& s) {
+  if (s.buffer.empty()) return;
+  const std::size_t written = std::fwrite(s.buffer.data(), 1, s.buffer.size(), s.file);
+  if (written != s.buffer.size()) throw std::runtime_error(io_error(s.final_path, "write failed", errno));
+  s.buffer.clear();
+}
+
+void PassFiles::close(Stream& s) {
+  flush(s);
+  const int rc = std::fclose(s.file);
+  s.file = nullptr;
+  if (rc != 0) throw std::runtime_error(io_error(s.final_path, "write failed", errno));
+  std::error_code ec;
+  std::filesystem::rename(s.temporary_path, s.final_path, ec);
+  if (ec) throw std::runtime_error(s.final_path.string() + ": cannot rename into place (" + ec.message() + ")");
+  s.temporary_path.clear();
+}
+
+void PassFiles::row(const HistoryRow& row) {
+  append_history_line(history_.buffer, row);
+  if (history_.buffer.size() >= kFlushBytes) flush(history_);
+}
+
+void PassFiles::event(const PassEvent& event) {
+  append_event_line(events_.buffer, event);
+  if (events_.buffer.size() >= kFlushBytes) flush(events_);
+}
+
+void PassFiles::commit(const PassResult& result, const Config& config, const Surface& surface) {
+  close(history_);
+  close(events_);
+  write_file_atomically(dir_ / "summary.json", summary_json(result, config, surface).dump(2) + "\n");
+  committed_ = true;
+}
+
+void write_pass_outputs(const std::filesystem::path& dir, const PassResult& result, const Config& config,
+                        const Surface& surface) {
+  PassFiles files(dir, config.beam.modes);
+  for (const HistoryRow& r : result.history) files.row(r);
+  for (const PassEvent& e : result.events) files.event(e);
+  files.commit(result, config, surface);
 }
 
 }  // namespace rotbeam

@@ -5,22 +5,17 @@
 
 namespace rotbeam {
 
-Workspace::Workspace(int size)
-    : n(size),
-      mass(size, size),
-      mass_llt(size),
+ForeshorteningWorkspace::ForeshorteningWorkspace(int size)
+    : BeamWorkspace(size),
       gyroscopic(size),
       foreshortening(size),
       centrifugal(size),
       bending(size),
-      psi(size),
       z(static_cast<std::size_t>(size) * size * (size + 1) / 2),
       q_pairs(size * (size + 1) / 2),
       v_pairs(size * (size + 1) / 2),
       p_contract(size * (size + 1) / 2),
-      isp_cubic(size),
-      scratch(size),
-      scratch2(size) {}
+      isp_cubic(size) {}
 
 namespace {
 
@@ -46,7 +41,7 @@ void packed_outer(int n_runtime, const double* a, double* u) {
 }
 
 template <int N>
-void mass_kernel(const Model& model, const double* qv, Workspace& ws) {
+void mass_kernel(const ForeshorteningBeam& model, const double* qv, ForeshorteningWorkspace& ws) {
   const ModalIntegrals& mi = *model.integrals;
   const int n = N > 0 ? N : mi.n;
   const int np = n * (n + 1) / 2;
@@ -77,7 +72,7 @@ void mass_kernel(const Model& model, const double* qv, Workspace& ws) {
 }
 
 template <int N>
-void force_kernel(const Model& model, const double* qv, const double* vv, Workspace& ws) {
+void force_kernel(const ForeshorteningBeam& model, const double* qv, const double* vv, ForeshorteningWorkspace& ws) {
   const ModalIntegrals& mi = *model.integrals;
   const int n = N > 0 ? N : mi.n;
   const int np = n * (n + 1) / 2;
@@ -161,12 +156,12 @@ void dispatch(int n, Fn&& fn) {
 
 }  // namespace
 
-void evaluate_mass(const Model& model, const Eigen::Ref<const Eigen::VectorXd>& q, Workspace& ws) {
+void evaluate_mass(const ForeshorteningBeam& model, const Eigen::Ref<const Eigen::VectorXd>& q, ForeshorteningWorkspace& ws) {
   dispatch(model.n, [&](auto dim) { mass_kernel<decltype(dim)::value>(model, q.data(), ws); });
 }
 
-void evaluate_dynamics(const Model& model, const Eigen::Ref<const Eigen::VectorXd>& q,
-                       const Eigen::Ref<const Eigen::VectorXd>& qd, Workspace& ws) {
+void evaluate_dynamics(const ForeshorteningBeam& model, const Eigen::Ref<const Eigen::VectorXd>& q,
+                       const Eigen::Ref<const Eigen::VectorXd>& qd, ForeshorteningWorkspace& ws) {
   dispatch(model.n, [&](auto dim) {
     constexpr int N = decltype(dim)::value;
     mass_kernel<N>(model, q.data(), ws);
@@ -175,18 +170,7 @@ void evaluate_dynamics(const Model& model, const Eigen::Ref<const Eigen::VectorX
   });
 }
 
-void acceleration(const Model& model, const Eigen::Ref<const Eigen::VectorXd>& q,
-                  const Eigen::Ref<const Eigen::VectorXd>& qd, const Eigen::VectorXd* generalized_force,
-                  Workspace& ws, Eigen::Ref<Eigen::VectorXd> qdd) {
-  evaluate_dynamics(model, q, qd, ws);
-  if (generalized_force)
-    qdd = *generalized_force - ws.psi;
-  else
-    qdd = -ws.psi;
-  ws.mass_llt.solveInPlace(qdd);
-}
-
-Eigen::MatrixXd linear_stiffness(const Model& model) {
+Eigen::MatrixXd linear_stiffness(const ForeshorteningBeam& model) {
   const ModalIntegrals& mi = *model.integrals;
   const int n = mi.n;
   const double L = model.length;

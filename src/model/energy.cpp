@@ -4,8 +4,8 @@
 
 namespace rotbeam {
 
-EnergyTerms evaluate_energy(const Model& model, const Eigen::Ref<const Eigen::VectorXd>& q,
-                            const Eigen::Ref<const Eigen::VectorXd>& qd, Workspace& ws) {
+EnergyTerms evaluate_energy(const ForeshorteningBeam& model, const Eigen::Ref<const Eigen::VectorXd>& q,
+                            const Eigen::Ref<const Eigen::VectorXd>& qd, ForeshorteningWorkspace& ws) {
   const ModalIntegrals& mi = *model.integrals;
   const int n = mi.n, np = mi.pairs;
   const double L = model.length, rh = model.hub_radius, m = model.mass, w = model.omega;
@@ -66,6 +66,53 @@ EnergyTerms evaluate_energy(const Model& model, const Eigen::Ref<const Eigen::Ve
   e.kinetic = e.t0 + e.t1 + e.t2;
   e.jacobi = e.t2 - e.t0 + e.potential;
   return e;
+}
+
+double angular_momentum_rate(const ForeshorteningBeam& model, const Eigen::Ref<const Eigen::VectorXd>& q,
+                             const Eigen::Ref<const Eigen::VectorXd>& qd,
+                             const Eigen::Ref<const Eigen::VectorXd>& qdd, ForeshorteningWorkspace& ws) {
+  const ModalIntegrals& mi = *model.integrals;
+  const int n = mi.n, np = mi.pairs;
+  const double L = model.length, rh = model.hub_radius, m = model.mass, w = model.omega;
+  // ∇J·q̇ = m [ −2 q̇ᵀ(r_h ∫ISP + L ∫ξISP) q / L + ∇Q4·q̇/(4L²) + 2 q·q̇ ], Q4 = ∫(qᵀISP q)² dξ,
+  // ∇Q4 = 4 ∫ (qᵀISP q) ISP q, contracted through Z (ws.z) like the centrifugal force.
+  evaluate_mass(model, q, ws);
+  double* u = ws.q_pairs.data();
+  for (int p = 0; p < np; ++p) {
+    const int j = mi.pair_first[p], l = mi.pair_second[p];
+    u[p] = (j == l ? 1.0 : 2.0) * q[j] * q[l];
+  }
+  double cubic_v = 0.0;  // Σ_i q̇_i ∫ (qᵀISP q)(ISP q)_i
+  for (int i = 0; i < n; ++i) {
+    const double* zi = ws.z.data() + static_cast<std::size_t>(i) * np;
+    double s = 0.0;
+    for (int p = 0; p < np; ++p) s += zi[p] * u[p];
+    cubic_v += qd[i] * s;
+  }
+  const double grad_j_v = m * (-2.0 * (rh * detail::bilinear_form(mi.isp_mean, qd, q) +
+                                       L * detail::bilinear_form(mi.isp_xi, qd, q)) / L +
+                               cubic_v / (L * L) + 2.0 * q.dot(qd));
+  // p(q)·q̇ = m [ (r_h s̄ + L s̄_ξ)·q̇ − B(q,q,q̇)/(2L) + B(q,q̇,q)/L ], B(a,b,c) = Σ a_i b_k c_j ∫ISP_ik S_j.
+  // d/dt: B(q,q,q̇)' = 2B(q̇,q,q̇) + B(q,q,q̈);  B(q,q̇,q)' = B(q̇,q̇,q) + B(q,q̈,q) + B(q,q̇,q̇), and
+  // B(q,q̇,q̇) = B(q̇,q,q̇) (ISP is symmetric).
+  double b_vqv = 0.0, b_qqa = 0.0, b_vvq = 0.0, b_qaq = 0.0;
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < n; ++k) {
+      const double* b = mi.isp_s.data() + static_cast<std::size_t>(i * n + k) * n;
+      double bq = 0.0, bv = 0.0, ba = 0.0;
+      for (int j = 0; j < n; ++j) {
+        bq += b[j] * q[j];
+        bv += b[j] * qd[j];
+        ba += b[j] * qdd[j];
+      }
+      b_vqv += qd[i] * q[k] * bv;
+      b_qqa += q[i] * q[k] * ba;
+      b_vvq += qd[i] * qd[k] * bq;
+      b_qaq += q[i] * qdd[k] * bq;
+    }
+  const double dp = m * ((rh * mi.s_mean + L * mi.s_xi).dot(qdd) - (2.0 * b_vqv + b_qqa) / (2.0 * L) +
+                         (b_vvq + b_qaq + b_vqv) / L);
+  return w * grad_j_v + dp;
 }
 
 }  // namespace rotbeam

@@ -9,7 +9,7 @@
 
 namespace rotbeam {
 
-ModalAnalysis modal_analysis(const Model& model) {
+ModalAnalysis modal_analysis(const ForeshorteningBeam& model) {
   const Eigen::MatrixXd k = linear_stiffness(model) / model.mass;
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(k);
   ModalAnalysis out;
@@ -29,12 +29,12 @@ std::vector<double> default_mode_speeds_rpm(double case_speed_rpm) {
   return speeds;
 }
 
-Eigen::MatrixXd frequencies_versus_speed(const PhysicalParameters& base, const std::vector<double>& speeds_rpm) {
+Eigen::MatrixXd frequencies_versus_speed(const BeamParameters& base, const std::vector<double>& speeds_rpm) {
   Eigen::MatrixXd f(static_cast<Eigen::Index>(speeds_rpm.size()), base.modes);
-  PhysicalParameters p = base;
+  BeamParameters p = base;
   for (std::size_t s = 0; s < speeds_rpm.size(); ++s) {
     p.speed_rpm = speeds_rpm[s];
-    f.row(static_cast<Eigen::Index>(s)) = modal_analysis(make_model(p)).frequencies_hz.transpose();
+    f.row(static_cast<Eigen::Index>(s)) = modal_analysis(make_beam(p)).frequencies_hz.transpose();
   }
   return f;
 }

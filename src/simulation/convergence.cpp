@@ -1,10 +1,11 @@
 #include "rotbeam/convergence.hpp"
 
+#include "rotbeam/case.hpp"
+#include "rotbeam/job_runner.hpp"
+
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdio>
-#include <thread>
 
 namespace rotbeam {
 
@@ -38,7 +39,8 @@ double relative(double a, double ref) {
 
 }  // namespace
 
-ConvergenceStudy run_convergence(const Config& base, const ConvergenceLadder& ladder, int jobs) {
+ConvergenceStudy run_convergence(const Config& base, const ConvergenceLadder& ladder, int jobs, const StopToken* stop,
+                                 const std::function<void(const JobProgress&)>& on_run_finished) {
   std::vector<Config> configs;
   ConvergenceStudy study;
   const double ref_rtol = *std::min_element(ladder.rtols.begin(), ladder.rtols.end());
@@ -48,50 +50,50 @@ ConvergenceStudy run_convergence(const Config& base, const ConvergenceLadder& la
   };
   {
     Config c = base;
-    c.scheme = "adaptive";
-    c.rtol = ref_rtol;
+    c.simulation.scheme = Scheme::adaptive;
+    c.simulation.rtol = ref_rtol;
     ConvergenceRun r;
     r.label = "adaptive rtol=" + label_number(ref_rtol) + " (reference)";
     r.scheme = "adaptive";
     r.rtol = ref_rtol;
-    r.modes = c.physical.modes;
+    r.modes = c.beam.modes;
     r.reference = true;
     add(c, r);
   }
   for (double rtol : ladder.rtols) {
     if (rtol == ref_rtol) continue;
     Config c = base;
-    c.scheme = "adaptive";
-    c.rtol = rtol;
+    c.simulation.scheme = Scheme::adaptive;
+    c.simulation.rtol = rtol;
     ConvergenceRun r;
     r.label = "adaptive rtol=" + label_number(rtol);
     r.scheme = "adaptive";
     r.rtol = rtol;
-    r.modes = c.physical.modes;
+    r.modes = c.beam.modes;
     add(c, r);
   }
   for (double h : ladder.thesis_free_steps) {
     Config c = base;
-    c.scheme = "thesis";
-    c.free_step_s = h;
-    c.contact_step_s = h / 10.0;
-    c.fine_contact_step_s = h / 100.0;
+    c.simulation.scheme = Scheme::thesis;
+    c.simulation.free_step_s = h;
+    c.simulation.contact_step_s = h / 10.0;
+    c.simulation.fine_contact_step_s = h / 100.0;
     ConvergenceRun r;
     r.label = "thesis h=" + label_number(h) + "/" + label_number(h / 10.0);
     r.scheme = "thesis";
     r.free_step_s = h;
     r.contact_step_s = h / 10.0;
-    r.modes = c.physical.modes;
+    r.modes = c.beam.modes;
     add(c, r);
   }
   const double modes_rtol = std::min(1e-8, 100.0 * ref_rtol);
   for (int n : ladder.modes) {
     Config c = base;
-    c.scheme = "adaptive";
-    c.rtol = modes_rtol;
-    c.physical.modes = n;
-    c.modal_velocity.resize(n, 0.0);
-    c.modal_displacement.resize(n, 0.0);
+    c.simulation.scheme = Scheme::adaptive;
+    c.simulation.rtol = modes_rtol;
+    c.beam.modes = n;
+    c.initial.modal_velocity.resize(n, 0.0);
+    c.initial.modal_displacement.resize(n, 0.0);
     ConvergenceRun r;
     r.label = "modes=" + std::to_string(n) + " (rtol=" + label_number(modes_rtol) + ")";
     r.scheme = "adaptive";
@@ -99,20 +101,21 @@ ConvergenceStudy run_convergence(const Config& base, const ConvergenceLadder& la
     r.modes = n;
     add(c, r);
   }
-  for (Config& c : configs) c.output_interval_s = 1e30;  // only the summary is needed
+  for (Config& c : configs) c.simulation.output_interval_s = 1e30;  // only the summary is needed
 
-  const int threads = jobs > 0 ? jobs : std::max(1u, std::thread::hardware_concurrency());
-  std::atomic<std::size_t> next{0};
-  auto worker = [&] {
-    for (std::size_t i; (i = next.fetch_add(1)) < configs.size();) {
-      const PassResult result = configs[i].run_pass();
-      study.runs[i].summary = result.summary;
-      if (result.failure) study.runs[i].failure = result.failure->kind + ": " + result.failure->message;
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
-  for (std::thread& t : pool) t.join();
+  JobRunnerOptions runner;
+  runner.threads = jobs;
+  runner.stop = stop;
+  runner.on_job_finished = on_run_finished;
+  run_jobs(
+      configs.size(),
+      [&](std::size_t i) {
+        const PassResult result = run_case(build_case(configs[i]), {nullptr, stop});
+        study.runs[i].summary = result.summary;
+        if (result.failure)
+          study.runs[i].failure = std::string(failure_name(result.failure->kind)) + ": " + result.failure->message;
+      },
+      runner);
   return study;
 }
 

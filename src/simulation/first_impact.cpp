@@ -1,46 +1,58 @@
 #include "rotbeam/first_impact.hpp"
 
-#include "rotbeam/kinematics.hpp"
-
+#include <cmath>
 #include <stdexcept>
 
 namespace rotbeam {
 
-FirstImpactResult first_impact(const Model& model, const ImpactLaw& law, const InitialConditions& initial,
-                               double end_angle_rad, double step_s) {
-  const int n = model.n;
-  Workspace ws(n);
-  TipKinematics tip(n);
+FirstImpactResult first_impact(const System& system, const InitialConditions& initial, double end_angle_deg,
+                               double step_s) {
+  const BeamModel& beam = system.beam;
+  const int n = beam.modes();
+  const double t_end = beam.time_at(end_angle_deg * M_PI / 180.0);
   FirstImpactResult r;
+  FilamentState s(n);
+  if (!initial.rigid_start) {
+    s.q = initial.q0;
+    s.qd = initial.qd0;
+  }
+  if (gap(beam, system.surface, 0.0, s.q) >= 0.0)
+    throw std::invalid_argument("the initial shape already touches the surface (C(0) >= 0)");
   if (initial.rigid_start) {
-    const double theta_star = model.rigid_contact_angle();
-    if (theta_star >= end_angle_rad) {
-      r.min_gap = gap(model, model.time_at(end_angle_rad), Eigen::VectorXd::Zero(n));
+    const double theta_star = system.surface.first_contact_angle(beam.tip_radius(), beam.theta(0.0));
+    const double t_star = std::isnan(theta_star) ? INFINITY : beam.time_at(theta_star);
+    if (!(t_star < t_end)) {
+      r.min_gap = gap(beam, system.surface, t_end, s.q);
       return r;
     }
-    r.t = model.time_at(theta_star);
-    r.q = Eigen::VectorXd::Zero(n);
-    r.qd_before = Eigen::VectorXd::Zero(n);
+    s.t = t_star;
   } else {
-    FreeFlightOptions options;
-    options.step_s = step_s;
-    options.end_time_s = model.time_at(end_angle_rad);
-    options.stop_at_contact = true;
-    if (gap(model, 0.0, initial.q0) >= 0.0)
-      throw std::invalid_argument("the initial shape already touches the surface (C(0) >= 0)");
-    FreeFlightResult flight = integrate_free_flight(model, 0.0, initial.q0, initial.qd0, options, ws);
-    r.steps = flight.steps;
-    r.rhs_evaluations = flight.rhs_evaluations;
-    r.min_gap = flight.min_gap;
-    if (flight.end != FreeFlightEnd::contact) return r;
-    r.t = flight.t;
-    r.q = flight.q;
-    r.qd_before = flight.qd;
+    PassOptions options;
+    options.scheme = Scheme::thesis;
+    options.free_step_s = step_s;
+    const std::unique_ptr<Stepper> stepper = make_thesis_stepper(system, options);
+    stepper->begin_free(s, false);
+    r.min_gap = gap(beam, system.surface, s.t, s.q);
+    bool touched = false;
+    while (s.t < t_end && !touched) {
+      const StepOutcome o = stepper->step(s, t_end);
+      if (o.status == StepStatus::failed) throw std::runtime_error(o.failure->message);
+      touched = o.status == StepStatus::root;
+      r.min_gap = std::max(r.min_gap, gap(beam, system.surface, s.t, s.q));
+    }
+    r.steps = stepper->statistics().steps;
+    r.rhs_evaluations = stepper->statistics().rhs_evaluations;
+    if (!touched) return r;
   }
   r.found = true;
-  r.theta = model.theta(r.t);
-  r.qd_after = r.qd_before;
-  r.impact = apply_impact(model, law, r.t, r.q, r.qd_after, ws, tip);
+  r.t = s.t;
+  r.theta = beam.theta(s.t);
+  r.q = s.q;
+  r.qd_before = s.qd;
+  r.qd_after = s.qd;
+  const std::unique_ptr<BeamWorkspace> ws = beam.make_workspace();
+  TipKinematics tip(n);
+  r.impact = apply_impact(beam, system.surface, system.law.impact, r.t, r.q, r.qd_after, *ws, tip);
   r.x_tip = tip.X;
   r.y_tip = tip.Y;
   return r;

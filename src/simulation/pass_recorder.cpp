@@ -1,35 +1,10 @@
-#include "rotbeam/pass_recorder.hpp"
+#include "pass_recorder.hpp"
 
-#include <atomic>
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
 namespace rotbeam {
-
-namespace {
-std::atomic<bool> g_interrupt{false};
-}  // namespace
-
-void request_interrupt() noexcept { g_interrupt.store(true); }
-void clear_interrupt() noexcept { g_interrupt.store(false); }
-bool interrupt_requested() noexcept { return g_interrupt.load(); }
-
-bool PassRecorder::stop_requested(double t) {
-  if (result_.failure) return true;
-  if (g_interrupt.load()) {
-    fail("interrupted", t, "the run was interrupted (SIGINT/SIGTERM); results up to here are kept");
-    return true;
-  }
-  if (validity_breached_) {
-    std::ostringstream s;
-    s << "max |y_t|/L = " << validity_ratio_ << " exceeds simulation.deflection_warning_ratio = "
-      << options_.deflection_warning_ratio
-      << " (simulation.deflection_limit_is_error = true): beyond the quadratic foreshortening model";
-    fail("validity", t, s.str());
-    return true;
-  }
-  return false;
-}
 
 const char* phase_name(Phase p) {
   switch (p) {
@@ -40,65 +15,60 @@ const char* phase_name(Phase p) {
   return "?";
 }
 
-PassRecorder::PassRecorder(const Model& model, const FrictionModel& friction, const PassOptions& options,
+PassRecorder::PassRecorder(const System& system, const PassOptions& options, const PassControl& control,
                            PassResult& result)
-    : model_(model),
-      friction_(friction),
+    : system_(system),
       options_(options),
+      control_(control),
       result_(result),
-      ws_(model.n),
-      tip_(model.n),
-      generalized_force_(model.n),
-      qdd_(model.n),
-      q_probe_(model.n),
-      qd_probe_(model.n),
-      qstar_(model.n) {}
-
-ContactLoad PassRecorder::load(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double lambda,
-                               double slip) {
-  ContactLoad l;
-  if (lambda == 0.0) return l;
-  tip_kinematics(model_, t, q, qd, tip_);
-  friction_direction(friction_, tip_, slip, qstar_);
-  generalized_force_ = lambda * tip_.grad_gap + std::abs(lambda) * qstar_;
-  l.lambda = lambda;
-  l.slip = slip;
-  l.normal_force = reported_normal_force(friction_, tip_, lambda);
-  l.friction_force = -effective_friction(friction_, tip_) * std::abs(lambda) * slip;
-  l.power = qd.dot(generalized_force_);
-  l.slip_power = l.friction_force * tip_.VY;
-  return l;
+      ws_(system.beam.make_workspace()),
+      tip_(system.beam.modes()),
+      generalized_force_(system.beam.modes()),
+      qdd_(system.beam.modes()) {
+  row_.q.resize(system.beam.modes());
+  row_.qd.resize(system.beam.modes());
 }
 
-double PassRecorder::hub_torque(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
-                                const ContactLoad& load) {
-  // q̈ = M⁻¹(Q − Ψ); dH_z/dt = d/dε H_z(q + εq̇, q̇ + εq̈) by Richardson-extrapolated central
-  // differences (exact for H_z's degree-4 polynomial dependence on ε, up to round-off).
-  tip_kinematics(model_, t, q, qd, tip_);
-  if (load.lambda != 0.0) {
-    friction_direction(friction_, tip_, load.slip, qstar_);
-    generalized_force_ = load.lambda * tip_.grad_gap + std::abs(load.lambda) * qstar_;
-    acceleration(model_, q, qd, &generalized_force_, ws_, qdd_);
-  } else {
-    acceleration(model_, q, qd, nullptr, ws_, qdd_);
+bool PassRecorder::stop_requested(double t) {
+  if (result_.failure) return true;
+  if (control_.stop && control_.stop->stop_requested()) {
+    fail(FailureKind::interrupted, t, "the run was interrupted (SIGINT/SIGTERM or a stop request); results up to here are kept");
+    return true;
   }
-  const double eps = 1e-6;
-  auto h_at = [&](double e) {
-    q_probe_ = q + e * qd;
-    qd_probe_ = qd + e * qdd_;
-    return evaluate_energy(model_, q_probe_, qd_probe_, ws_).angular_momentum;
-  };
-  const double d1 = (h_at(eps) - h_at(-eps)) / (2 * eps);
-  const double d2 = (h_at(eps / 2) - h_at(-eps / 2)) / eps;
-  const double dh = (4 * d2 - d1) / 3;
-  tip_kinematics(model_, t, q, qd, tip_);
-  const double fx = load.lambda, fy = load.friction_force;
-  return dh - (tip_.X * fy - tip_.Y * fx);
+  if (validity_breached_) {
+    std::ostringstream s;
+    s << "max |y_t|/L = " << validity_ratio_ << " exceeds simulation.deflection_warning_ratio = "
+      << options_.deflection_warning_ratio
+      << " (simulation.deflection_limit_is_error = true): beyond the quadratic foreshortening model";
+    fail(FailureKind::validity, t, s.str());
+    return true;
+  }
+  return false;
 }
 
-void PassRecorder::track(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
-  (void)qd;
-  const double ratio = std::abs(model_.integrals->s_tip.dot(q)) / model_.length;
+double PassRecorder::tip_y(double t, const Eigen::VectorXd& q) const {
+  return tip_position(system_.beam, t, q).y();
+}
+
+void PassRecorder::emit(const PassEvent& e) {
+  if (control_.sink)
+    control_.sink->event(e);
+  else
+    result_.events.push_back(e);
+}
+
+double PassRecorder::hub_torque(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const ContactLoad& load) {
+  // τ = dH_z/dt − (X_t F_Y − Y_t F_X): the hub's torque is the rate of the filament's angular momentum
+  // less the moment of the contact force (SPEC §7); dH_z/dt in closed form from q̈ = M⁻¹(Q − Ψ).
+  // `tip_` holds the kinematics at (t, q, q̇).
+  const ContactLoad l = contact_load(system_.law.friction, tip_, qd, load.lambda, load.slip, generalized_force_);
+  acceleration(system_.beam, q, qd, l.lambda != 0.0 ? &generalized_force_ : nullptr, *ws_, qdd_);
+  const double dh = system_.beam.angular_momentum_rate(q, qd, qdd_, *ws_);
+  return dh - (tip_.X * l.force_y - tip_.Y * l.force_x);
+}
+
+void PassRecorder::track(double t, const Eigen::VectorXd& q) {
+  const double ratio = std::abs(system_.beam.tip_position(q).y()) / system_.beam.beam_length();
   if (ratio > result_.summary.max_tip_deflection_ratio) result_.summary.max_tip_deflection_ratio = ratio;
   if (options_.deflection_limit_is_error && ratio > options_.deflection_warning_ratio && !validity_breached_) {
     validity_breached_ = true;
@@ -109,32 +79,34 @@ void PassRecorder::track(double t, const Eigen::VectorXd& q, const Eigen::Vector
     std::ostringstream s;
     s << "tip deflection exceeds " << options_.deflection_warning_ratio
       << " of the length: the quadratic foreshortening model is at the edge of its validity (SPEC §10)";
-    warn(t, s.str());
+    warn(t, q, s.str());
   }
 }
 
 void PassRecorder::sample(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Phase phase,
                           const ContactLoad& load) {
-  HistoryRow row;
-  tip_kinematics(model_, t, q, qd, tip_);
-  row.t = t;
-  row.theta = tip_.theta;
-  row.phase = phase;
-  row.x_tip = tip_.X;
-  row.y_tip = tip_.Y;
-  row.gap = tip_.gap;
-  row.vx = tip_.VX;
-  row.vy = tip_.VY;
-  row.normal_force = load.normal_force;
-  row.friction_force = load.friction_force;
-  row.lambda = load.lambda;
-  row.q = q;
-  row.qd = qd;
-  const EnergyTerms e = evaluate_energy(model_, q, qd, ws_);
-  row.jacobi = e.jacobi;
+  tip_kinematics(system_.beam, system_.surface, t, q, qd, tip_);
+  row_.t = t;
+  row_.theta = tip_.theta;
+  row_.phase = phase;
+  row_.x_tip = tip_.X;
+  row_.y_tip = tip_.Y;
+  row_.gap = tip_.gap;
+  row_.vx = tip_.VX;
+  row_.vy = tip_.VY;
+  row_.normal_force = load.normal_force;
+  row_.friction_force = load.friction_force;
+  row_.lambda = load.lambda;
+  row_.q = q;
+  row_.qd = qd;
+  const EnergyTerms e = system_.beam.energy(q, qd, *ws_);
+  row_.jacobi = e.jacobi;
   energy_scale_ = std::max({energy_scale_, std::abs(e.jacobi), e.t2});
-  row.hub_torque = hub_torque(t, q, qd, load);
-  result_.history.push_back(std::move(row));
+  row_.hub_torque = hub_torque(q, qd, load);
+  if (control_.sink)
+    control_.sink->row(row_);
+  else
+    result_.history.push_back(row_);
   if (options_.output_interval_s <= 0.0) return;  // every accepted point is sampled
   next_sample_t_ = options_.output_interval_s * (std::floor(t / options_.output_interval_s) + 1.0);
 }
@@ -142,49 +114,33 @@ void PassRecorder::sample(double t, const Eigen::VectorXd& q, const Eigen::Vecto
 void PassRecorder::start(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
   next_sample_t_ = t;
   last_t_ = t;
-  h_start_ = evaluate_energy(model_, q, qd, ws_).jacobi;
+  h_start_ = system_.beam.energy(q, qd, *ws_).jacobi;
   energy_scale_ = std::abs(h_start_);
-  track(t, q, qd);
+  track(t, q);
   sample(t, q, qd, Phase::free, ContactLoad{});
 }
 
 bool PassRecorder::impacts_exhausted(double t) {
   if (result_.summary.impacts < options_.max_impacts) return false;
-  fail("impacts", t,
+  fail(FailureKind::impacts, t,
        "more than " + std::to_string(options_.max_impacts) +
            " impacts in one pass: impacts accumulate (raise impact.plastic_below_m_s)");
   return true;
 }
 
 void PassRecorder::accept(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Phase phase,
-                          const ContactLoad& begin, const ContactLoad& end, bool force_sample) {
-  const double dt = t - last_t_;
-  PassSummary& s = result_.summary;
-  if (phase != Phase::free) {
-    s.contact_time_s += dt;
-    normal_time_integral_ += 0.5 * (begin.normal_force + end.normal_force) * dt;
-    s.friction_work_j += 0.5 * (begin.slip_power + end.slip_power) * dt;
-    work_ += 0.5 * (begin.power + end.power) * dt;
-    s.peak_normal_force_n = std::max({s.peak_normal_force_n, begin.normal_force, end.normal_force});
-  }
-  last_t_ = t;
-  track(t, q, qd);
-  if (force_sample || t >= next_sample_t_) sample(t, q, qd, phase, end);
-}
-
-void PassRecorder::accept_integrated(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Phase phase,
-                                     const ContactLoad& load_end, const StepIntegrals& in, bool force_sample) {
+                          const ContactLoad& load, const StepIntegrals& in, bool force_sample) {
   PassSummary& s = result_.summary;
   if (phase != Phase::free) {
     s.contact_time_s += t - last_t_;
     normal_time_integral_ += in.normal_impulse;
     s.friction_work_j += in.friction_work;
     work_ += in.work;
-    s.peak_normal_force_n = std::max(s.peak_normal_force_n, load_end.normal_force);
+    s.peak_normal_force_n = std::max(s.peak_normal_force_n, load.normal_force);
   }
   last_t_ = t;
-  track(t, q, qd);
-  if (force_sample || t >= next_sample_t_) sample(t, q, qd, phase, load_end);
+  track(t, q);
+  if (force_sample || t >= next_sample_t_) sample(t, q, qd, phase, load);
 }
 
 void PassRecorder::impact(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd_before,
@@ -192,7 +148,8 @@ void PassRecorder::impact(double t, const Eigen::VectorXd& q, const Eigen::Vecto
   PassSummary& s = result_.summary;
   ++s.impacts;
   if (r.restitution == 0.0) ++s.plastic_impacts;
-  const double theta_deg = model_.theta(t) * 180.0 / M_PI;
+  const double theta = system_.beam.theta(t);
+  const double theta_deg = theta * 180.0 / M_PI;
   if (s.impacts == 1) s.first_impact_deg = theta_deg;
   s.last_separation_deg = theta_deg;
   s.normal_impulse_n_s += std::abs(r.impulse);
@@ -200,104 +157,93 @@ void PassRecorder::impact(double t, const Eigen::VectorXd& q, const Eigen::Vecto
   sample(t, q, qd_before, Phase::free, ContactLoad{});
   PassEvent e;
   e.t = t;
-  e.theta = model_.theta(t);
-  tip_kinematics(model_, t, q, qd_after, tip_);
-  e.y_tip = tip_.Y;
-  e.kind = "impact";
+  e.theta = theta;
+  e.y_tip = tip_y(t, q);
+  e.kind = EventKind::impact;
   e.vx_before = r.vx_before;
   e.vx_after = r.vx_after;
   e.restitution = r.restitution;
   e.impulse = r.impulse;
   e.detail = r.restitution == 0.0 ? "plastic" : "";
-  result_.events.push_back(e);
+  emit(e);
   sample(t, q, qd_after, Phase::free, ContactLoad{});
   last_t_ = t;
 }
 
-void PassRecorder::contact_start(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
-                                 const std::string& detail) {
-  (void)qd;
+void PassRecorder::contact_start(double t, const Eigen::VectorXd& q, const std::string& detail) {
   in_episode_ = true;
   episode_t0_ = t;
-  episode_theta0_ = model_.theta(t);
-  episode_y0_ = 0;
-  tip_kinematics(model_, t, q, q * 0.0, tip_);
-  episode_y0_ = tip_.Y;
-  event(t, q, "contact_start", detail);
+  episode_theta0_ = system_.beam.theta(t);
+  episode_y0_ = tip_y(t, q);
+  event(EventKind::contact_start, t, q, detail);
 }
 
 void PassRecorder::contact_end(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                                const std::string& detail) {
   in_episode_ = false;
-  tip_kinematics(model_, t, q, qd, tip_);
   if (t > episode_t0_) {
     PassSummary& s = result_.summary;
     ++s.contact_episodes;
-    s.contact_intervals.push_back({episode_t0_, t, episode_theta0_, model_.theta(t), episode_y0_, tip_.Y});
-    s.last_separation_deg = model_.theta(t) * 180.0 / M_PI;
+    s.contact_intervals.push_back({episode_t0_, t, episode_theta0_, system_.beam.theta(t), episode_y0_, tip_y(t, q)});
+    s.last_separation_deg = system_.beam.theta(t) * 180.0 / M_PI;
   }
-  event(t, q, "contact_end", detail);
+  event(EventKind::contact_end, t, q, detail);
   sample(t, q, qd, Phase::free, ContactLoad{});
   last_t_ = t;
 }
 
-void PassRecorder::event(double t, const Eigen::VectorXd& q, const std::string& kind, const std::string& detail) {
+void PassRecorder::event(EventKind kind, double t, const Eigen::VectorXd& q, const std::string& detail) {
   PassEvent e;
   e.t = t;
-  e.theta = model_.theta(t);
-  tip_kinematics(model_, t, q, q * 0.0, tip_);
-  e.y_tip = tip_.Y;
+  e.theta = system_.beam.theta(t);
+  e.y_tip = tip_y(t, q);
   e.kind = kind;
   e.detail = detail;
-  result_.events.push_back(e);
+  emit(e);
 }
 
-void PassRecorder::warn(double t, const std::string& message) {
+void PassRecorder::warn(double t, const Eigen::VectorXd& q, const std::string& message) {
   for (const std::string& w : result_.summary.warnings)
     if (w == message) return;
   result_.summary.warnings.push_back(message);
-  PassEvent e;
-  e.t = t;
-  e.theta = model_.theta(t);
-  e.kind = "warning";
-  e.detail = message;
-  result_.events.push_back(e);
+  event(EventKind::warning, t, q, message);
 }
 
-void PassRecorder::fail(const std::string& kind, double t, const std::string& message) {
+void PassRecorder::fail(FailureKind kind, double t, const std::string& message) {
   NumericalFailure f;
   f.kind = kind;
   f.t = t;
-  f.theta = model_.theta(t);
+  f.theta = system_.beam.theta(t);
   f.message = message;
   result_.failure = f;
   PassEvent e;
   e.t = t;
   e.theta = f.theta;
-  e.kind = "failure";
-  e.detail = kind + ": " + message;
-  result_.events.push_back(e);
+  e.y_tip = NAN;  // the failure's instant may lie inside a step, where the state is not known
+  e.kind = EventKind::failure;
+  e.detail = std::string(failure_name(kind)) + ": " + message;
+  emit(e);
 }
 
 void PassRecorder::finish(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Phase phase,
-                          const ContactLoad& load) {
+                          const StepperStatistics& statistics) {
   if (in_episode_) {
-    if (!result_.failure) warn(t, "the tip is still in contact at the end angle");
+    if (!result_.failure) warn(t, q, "the tip is still in contact at the end angle");
     contact_end(t, q, qd, "end of the pass");
   } else {
-    sample(t, q, qd, phase, load);
+    sample(t, q, qd, phase, ContactLoad{});  // outside an episode there is no contact load
   }
   PassSummary& s = result_.summary;
+  s.steps = statistics.steps;
+  s.rhs_evaluations = statistics.rhs_evaluations;
+  s.corrector_iterations = statistics.corrector_iterations;
+  s.corrector_iterations_max = statistics.corrector_iterations_max;
   s.normal_impulse_n_s += normal_time_integral_;
   s.mean_normal_force_n = s.contact_time_s > 0 ? normal_time_integral_ / s.contact_time_s : 0.0;
-  const EnergyTerms e = evaluate_energy(model_, q, qd, ws_);
+  const EnergyTerms e = system_.beam.energy(q, qd, *ws_);
   energy_scale_ = std::max({energy_scale_, std::abs(e.jacobi), e.t2});
   s.energy_audit_residual = std::abs(e.jacobi - h_start_ - work_ - impact_jumps_) / energy_scale_;
-  PassEvent end;
-  end.t = t;
-  end.theta = model_.theta(t);
-  end.kind = "end";
-  result_.events.push_back(end);
+  event(EventKind::end, t, q, "");
 }
 
 }  // namespace rotbeam

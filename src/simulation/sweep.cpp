@@ -1,18 +1,15 @@
 #include "rotbeam/sweep.hpp"
 
 #include "rotbeam/atomic_file.hpp"
+#include "rotbeam/case.hpp"
 #include "rotbeam/detail/csv.hpp"
 #include "rotbeam/detail/parse.hpp"
-#include "rotbeam/pass.hpp"
 #include "rotbeam/pass_output.hpp"
 
-#include <atomic>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <mutex>
-#include <thread>
 
 namespace rotbeam {
 
@@ -173,47 +170,46 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
   progress.total = static_cast<int>(report.cases.size());
   progress.resumed = report.resumed;
   progress.finished = report.resumed;
-  const auto t0 = std::chrono::steady_clock::now();
-  std::atomic<std::size_t> next{0};
-  int ran_now = 0;
-  auto worker = [&] {
-    for (std::size_t n; (n = next.fetch_add(1)) < todo.size();) {
-      if (interrupt_requested()) break;
-      const std::size_t i = todo[n];
-      SweepCaseResult res;
-      try {
-        const PassResult pass = configs[i].run_pass();
-        write_pass_outputs(options.dir / report.cases[i].folder, pass, configs[i]);
-        res.summary = summary_json(pass, configs[i]);
-        if (!pass.failure)
-          res.status = SweepStatus::done;
-        else if (pass.failure->kind == "interrupted")
-          res.status = SweepStatus::interrupted;
-        else
-          res.status = SweepStatus::failed;
-        if (pass.failure) res.message = pass.failure->kind + ": " + pass.failure->message;
-      } catch (const std::exception& e) {
-        res.status = SweepStatus::error;
-        res.message = e.what();
-      }
-      std::lock_guard<std::mutex> lock(mutex);
-      report.results[i] = res;
-      ++ran_now;
-      ++progress.finished;
-      if (res.status == SweepStatus::failed || res.status == SweepStatus::error) ++progress.failed;
-      progress.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      const int remaining = progress.total - progress.finished;
-      progress.eta_s = ran_now > 0 ? progress.elapsed_s / ran_now * remaining : 0.0;
-      progress.last = &report.cases[i];
-      progress.last_result = &report.results[i];
-      if (options.on_case_finished) options.on_case_finished(progress);
-    }
+  JobRunnerOptions runner;
+  runner.threads = options.jobs;
+  runner.stop = options.stop;
+  runner.on_job_finished = [&](const JobProgress& p) {
+    const std::size_t i = todo[p.job];
+    ++progress.finished;
+    const SweepStatus status = report.results[i].status;
+    if (status == SweepStatus::failed || status == SweepStatus::error) ++progress.failed;
+    progress.elapsed_s = p.elapsed_s;
+    progress.eta_s = p.eta_s;
+    progress.last = &report.cases[i];
+    progress.last_result = &report.results[i];
+    if (options.on_case_finished) options.on_case_finished(progress);
   };
-  const int threads = options.jobs > 0 ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
-  std::vector<std::thread> pool;
-  for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
-  for (std::thread& t : pool) t.join();
-
+  run_jobs(
+      todo.size(),
+      [&](std::size_t n) {
+        const std::size_t i = todo[n];
+        SweepCaseResult res;
+        try {
+          const Case c = build_case(configs[i]);
+          PassFiles files(options.dir / report.cases[i].folder, configs[i].beam.modes);
+          const PassResult pass = run_case(c, {&files, options.stop});
+          files.commit(pass, configs[i], *c.surface);
+          res.summary = summary_json(pass, configs[i], *c.surface);
+          if (!pass.failure)
+            res.status = SweepStatus::done;
+          else if (pass.failure->kind == FailureKind::interrupted)
+            res.status = SweepStatus::interrupted;
+          else
+            res.status = SweepStatus::failed;
+          if (pass.failure) res.message = std::string(failure_name(pass.failure->kind)) + ": " + pass.failure->message;
+        } catch (const std::exception& e) {
+          res.status = SweepStatus::error;
+          res.message = e.what();
+        }
+        std::lock_guard<std::mutex> lock(mutex);
+        report.results[i] = res;
+      },
+      runner);
   // Cases never started (an interrupted sweep) are reported as interrupted.
   for (std::size_t n = 0; n < todo.size(); ++n) {
     SweepCaseResult& r = report.results[todo[n]];

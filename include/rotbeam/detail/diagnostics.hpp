@@ -1,7 +1,7 @@
 // Wording of the diagnostics both pass schemes give (internal).
 #pragma once
 
-#include "rotbeam/contact.hpp"
+#include "rotbeam/rigid_contact.hpp"
 
 #include <cmath>
 #include <sstream>
@@ -28,7 +28,14 @@ inline std::string painleve_message(double a, double b, double c) {
 /// A stick: V_t = 0 and the tangential force needed lies inside the friction cone.
 inline std::string stick_message(const SlipDecision& s, double mu_eff) {
   return "the tip sticks (V_t = 0 and the tangential force needed, " + short_number(s.stick_tangential) +
-         " N, is within the friction cone μF_n = " + short_number(mu_eff * std::abs(s.stick_normal)) + " N)";
+         " N, is within the friction cone μF_n = " + short_number(mu_eff * std::abs(s.stick_normal)) +
+         " N); the schemes do not hold a stick (SPEC §4: stop with a diagnostic)";
+}
+
+/// V_t passed through 0 in contact and the tip now slides the other way.
+inline std::string slip_reversal_message(double new_direction) {
+  return std::string("V_t = 0; the tip now slides toward ") + (new_direction > 0 ? "+t" : "−t") +
+         " (t: the surface tangent, +Y on the plane), friction acts against it";
 }
 
 /// A touch after which the tip leaves at once (the locked-tip normal force is positive).

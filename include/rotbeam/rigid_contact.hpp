@@ -1,14 +1,12 @@
-// Sustained contact with Coulomb friction (SPEC §4, thesis eqns 4-86…4-97, 4-109).
+// Sustained rigid contact with Coulomb friction (SPEC §4, thesis eqns 4-86…4-97, 4-109).
 //
-// In contact the tip obeys M q̈ = −Ψ + λ∇C + |λ| Q*, with λ ≤ 0 and Q* = −μ_eff s_t ∂Y_t/∂q, where
-// s_t = ±1 is the slip direction (sign of V_t = Ẏ_t). Because ∂C/∂R_tip is the unit vector X, λ is the
-// physical normal force: F_n = −λ [N], and the friction on the tip is F_t = −μ F_n s_t along Y.
-// With compat.thesis_forces the thesis's convention is used instead: F_n = |λ|·|∇C| and
-// μ_eff = μ|∇C| (|∇C| being the norm of the modal-coordinate gradient).
+// In contact the tip obeys M q̈ = −Ψ + λ∇C + |λ| Q*, with λ ≤ 0 and Q* = −μ_eff s_t ∂V_t/∂q̇, where
+// s_t = ±1 is the slip direction (sign of the tangential slip V_t). The forces this implies are
+// computed by contact_load (contact_law.hpp).
 #pragma once
 
-#include "rotbeam/dynamics.hpp"
-#include "rotbeam/kinematics.hpp"
+#include "rotbeam/contact_law.hpp"
+#include "rotbeam/surface.hpp"
 
 namespace rotbeam {
 
@@ -25,11 +23,6 @@ struct MultiplierSolution {
 /// λ is the sign of c); with a − b ≤ 0 (Painlevé's paradox) there are two (c > 0) or none (c < 0).
 MultiplierSolution solve_multiplier(double a, double b, double c);
 
-struct FrictionModel {
-  double mu = 0.4;
-  bool thesis_forces = false;  // compat.thesis_forces
-};
-
 /// Slip decision at a contact state.
 struct SlipDecision {
   enum class Kind { slip, stick, separate };
@@ -42,25 +35,18 @@ struct SlipDecision {
 
 /// Speed below which V_t is treated as zero: 1e-9 ω(r_h + L) (far above round-off, far below any
 /// physical slip speed; the sign of V_t is never taken from round-off, SPEC §10).
-double stick_speed_threshold(const Model& model);
+double stick_speed_threshold(const BeamModel& beam);
 
 /// Decides the slip direction at (t, q, q̇). If |V_t| exceeds the threshold, s_t = sign(V_t).
-/// Otherwise the tip is locked tangentially (two constraints, X_t = d and Ẏ_t = 0) and the normal
+/// Otherwise the tip is locked tangentially (two constraints, C = 0 and V_t = 0) and the normal
 /// and tangential forces needed are solved: λ > 0 → separate; |tangential| ≤ μ_eff|λ| → stick;
 /// else the tip slides against the force it would need, s_t = −sign(tangential).
 /// Requires `tip` filled at (t, q, q̇) and ws.mass_llt/ws.psi evaluated at (q, q̇).
-SlipDecision decide_slip(const Model& model, const FrictionModel& friction, const TipKinematics& tip,
-                         Workspace& ws);
+SlipDecision decide_slip(const BeamModel& beam, const FrictionModel& friction, const TipKinematics& tip,
+                         BeamWorkspace& ws);
 
 /// The locked-tip analysis of decide_slip, whatever V_t is (used at a located V_t = 0 event).
-SlipDecision decide_slip_at_rest(const Model& model, const FrictionModel& friction, const TipKinematics& tip,
-                                 Workspace& ws);
-
-/// μ_eff, the friction coefficient applied to |λ| (μ, or μ|∇C| under thesis_forces).
-double effective_friction(const FrictionModel& friction, const TipKinematics& tip);
-
-/// Reported normal force for a multiplier λ: −λ (physical) or |λ|·|∇C| (thesis_forces) [N].
-double reported_normal_force(const FrictionModel& friction, const TipKinematics& tip, double lambda);
+SlipDecision decide_slip_at_rest(const FrictionModel& friction, const TipKinematics& tip, BeamWorkspace& ws);
 
 /// Result of the acceleration-level multiplier (thesis eqn 4-109, with the complete γ of SPEC §4).
 struct AccelerationMultiplier {
@@ -70,13 +56,10 @@ struct AccelerationMultiplier {
 
 /// λ that keeps C̈ = 0 at (t, q, q̇) with slip direction s_t, from a = ∇CᵀM⁻¹∇C,
 /// b = ∇CᵀM⁻¹Q*, c = ∇CᵀM⁻¹Ψ − γ. Evaluates the dynamics at (q, q̇) into ws and fills `tip`.
-AccelerationMultiplier acceleration_multiplier(const Model& model, const FrictionModel& friction, double t,
+AccelerationMultiplier acceleration_multiplier(const BeamModel& beam, const Surface& surface,
+                                               const FrictionModel& friction, double t,
                                                const Eigen::Ref<const Eigen::VectorXd>& q,
                                                const Eigen::Ref<const Eigen::VectorXd>& qd, double slip_direction,
-                                               Workspace& ws, TipKinematics& tip);
-
-/// Generalised friction direction Q* = −μ_eff s_t ∂Y_t/∂q into `out` (size n).
-void friction_direction(const FrictionModel& friction, const TipKinematics& tip, double slip_direction,
-                        Eigen::Ref<Eigen::VectorXd> out);
+                                               BeamWorkspace& ws, TipKinematics& tip);
 
 }  // namespace rotbeam

@@ -1,4 +1,4 @@
-#include "rotbeam/contact.hpp"
+#include "rotbeam/rigid_contact.hpp"
 
 #include <cmath>
 
@@ -25,53 +25,39 @@ MultiplierSolution solve_multiplier(double a, double b, double c) {
   return s;
 }
 
-double stick_speed_threshold(const Model& model) {
-  return 1e-9 * std::max(model.omega * (model.hub_radius + model.length), 1e-3);
+double stick_speed_threshold(const BeamModel& beam) {
+  return 1e-9 * std::max(beam.hub_motion().omega * beam.tip_radius(), 1e-3);
 }
 
-double effective_friction(const FrictionModel& friction, const TipKinematics& tip) {
-  return friction.thesis_forces ? friction.mu * tip.grad_gap.norm() : friction.mu;
-}
-
-double reported_normal_force(const FrictionModel& friction, const TipKinematics& tip, double lambda) {
-  return friction.thesis_forces ? std::abs(lambda) * tip.grad_gap.norm() : -lambda;
-}
-
-void friction_direction(const FrictionModel& friction, const TipKinematics& tip, double slip_direction,
-                        Eigen::Ref<Eigen::VectorXd> out) {
-  out = (-effective_friction(friction, tip) * slip_direction) * tip.grad_y;
-}
-
-SlipDecision decide_slip(const Model& model, const FrictionModel& friction, const TipKinematics& tip,
-                         Workspace& ws) {
+SlipDecision decide_slip(const BeamModel& beam, const FrictionModel& friction, const TipKinematics& tip,
+                         BeamWorkspace& ws) {
   SlipDecision d;
-  if (std::abs(tip.VY) > stick_speed_threshold(model)) {
+  if (std::abs(tip.slip_speed) > stick_speed_threshold(beam)) {
     d.kind = SlipDecision::Kind::slip;
-    d.direction = tip.VY > 0 ? 1.0 : -1.0;
+    d.direction = tip.slip_speed > 0 ? 1.0 : -1.0;
     return d;
   }
-  return decide_slip_at_rest(model, friction, tip, ws);
+  return decide_slip_at_rest(friction, tip, ws);
 }
 
-SlipDecision decide_slip_at_rest(const Model& model, const FrictionModel& friction, const TipKinematics& tip,
-                                 Workspace& ws) {
-  (void)model;
+SlipDecision decide_slip_at_rest(const FrictionModel& friction, const TipKinematics& tip, BeamWorkspace& ws) {
   SlipDecision d;
   d.from_velocity = false;
-  // Two constraints: C̈ = ∇Cᵀq̈ + γ = 0 and Ÿ = gᵀq̈ + γ_Y = 0 with M q̈ = −Ψ + λ∇C + λ_t g, g = ∂Y/∂q.
+  // Two constraints: C̈ = ∇Cᵀq̈ + γ = 0 and V̇_t = gᵀq̈ + γ_t = 0 with M q̈ = −Ψ + λ∇C + λ_t g,
+  // g = ∂V_t/∂q̇.
   Eigen::VectorXd& minv_grad = ws.scratch;
   Eigen::VectorXd& minv_g = ws.scratch2;
   minv_grad = tip.grad_gap;
   ws.mass_llt.solveInPlace(minv_grad);
-  minv_g = tip.grad_y;
+  minv_g = tip.grad_tangent;
   ws.mass_llt.solveInPlace(minv_g);
-  const double ann = tip.grad_gap.dot(minv_grad), ant = tip.grad_gap.dot(minv_g), att = tip.grad_y.dot(minv_g);
+  const double ann = tip.grad_gap.dot(minv_grad), ant = tip.grad_gap.dot(minv_g), att = tip.grad_tangent.dot(minv_g);
   // ∇CᵀM⁻¹Ψ and gᵀM⁻¹Ψ via the symmetric solves already made.
-  const double cn = minv_grad.dot(ws.psi) - tip.gamma, ct = minv_g.dot(ws.psi) - tip.gamma_y;
+  const double cn = minv_grad.dot(ws.psi) - tip.gamma, ct = minv_g.dot(ws.psi) - tip.gamma_tangent;
   const double det = ann * att - ant * ant;
   if (det <= 1e-12 * ann * att) {
-    // ∇C ∥ ∂Y/∂q (e.g. the straight beam, where the tip can only move along the beam's local y):
-    // holding X_t also holds Y_t, friction does no work, and the frictionless λ = c/a decides.
+    // ∇C ∥ g (e.g. the straight beam on the plane, where the tip can only move along the beam's local
+    // y): holding the gap also holds the slip, friction does no work, and the frictionless λ = c/a decides.
     d.stick_normal = cn / ann;
     d.stick_tangential = 0.0;
     d.kind = d.stick_normal > 0.0 ? SlipDecision::Kind::separate : SlipDecision::Kind::stick;
@@ -94,19 +80,20 @@ SlipDecision decide_slip_at_rest(const Model& model, const FrictionModel& fricti
   return d;
 }
 
-AccelerationMultiplier acceleration_multiplier(const Model& model, const FrictionModel& friction, double t,
+AccelerationMultiplier acceleration_multiplier(const BeamModel& beam, const Surface& surface,
+                                               const FrictionModel& friction, double t,
                                                const Eigen::Ref<const Eigen::VectorXd>& q,
                                                const Eigen::Ref<const Eigen::VectorXd>& qd, double slip_direction,
-                                               Workspace& ws, TipKinematics& tip) {
-  evaluate_dynamics(model, q, qd, ws);
-  tip_kinematics(model, t, q, qd, tip);
+                                               BeamWorkspace& ws, TipKinematics& tip) {
+  beam.evaluate_dynamics(q, qd, ws);
+  tip_kinematics(beam, surface, t, q, qd, tip);
   Eigen::VectorXd& minv_grad = ws.scratch;
   minv_grad = tip.grad_gap;
   ws.mass_llt.solveInPlace(minv_grad);
   AccelerationMultiplier m;
   m.a = tip.grad_gap.dot(minv_grad);
   // b = ∇CᵀM⁻¹Q* = (M⁻¹∇C)ᵀQ* with Q* = −μ_eff s_t g.
-  m.b = -effective_friction(friction, tip) * slip_direction * minv_grad.dot(tip.grad_y);
+  m.b = -effective_friction(friction, tip) * slip_direction * minv_grad.dot(tip.grad_tangent);
   m.c = minv_grad.dot(ws.psi) - tip.gamma;
   m.solution = solve_multiplier(m.a, m.b, m.c);
   return m;

@@ -1,0 +1,112 @@
+// The beam-model seam: what the contact algorithms, the steppers and the outputs need from a
+// theory of the filament on its spinning hub (SPEC §2–§3, §7). A beam model is immutable and may
+// be shared by any number of passes and threads; its scratch space is a BeamWorkspace made by the
+// model itself (one per thread, reused by every call, nothing allocated per call).
+//
+// The quadratic-foreshortening model of the thesis is the first implementation
+// (foreshortening_beam.hpp); another theory (e.g. the elastica) implements the same interface and
+// plugs into the same surfaces, contact laws, steppers and outputs (docs/architecture.md).
+#pragma once
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <memory>
+
+namespace rotbeam {
+
+/// θ0 unless set: the filament starts along −Y (SPEC §1, §11) [deg].
+inline constexpr double kDefaultStartAngleDeg = -90.0;
+
+/// The hub's rigid rotation: θ(t) = θ0 + ω t, never wrapped (SPEC §1, §11).
+struct HubMotion {
+  double omega = 0;   // ω [rad/s]
+  double theta0 = 0;  // θ0 [rad]
+  /// Beam angle from +X at time t [rad].
+  double theta(double t) const { return theta0 + omega * t; }
+  /// Time at which the beam angle is θ [s].
+  double time_at(double theta_rad) const { return (theta_rad - theta0) / omega; }
+};
+
+/// Scratch space of a beam model and the results of its last evaluation. Beam models derive their
+/// own workspace from this one (see BeamModel::make_workspace).
+struct BeamWorkspace {
+  explicit BeamWorkspace(int n);
+  virtual ~BeamWorkspace() = default;
+  BeamWorkspace(const BeamWorkspace&) = delete;
+  BeamWorkspace& operator=(const BeamWorkspace&) = delete;
+  int n;
+  Eigen::MatrixXd mass;                  // M(q) [kg]
+  Eigen::LLT<Eigen::MatrixXd> mass_llt;  // Cholesky factor of M(q)
+  Eigen::VectorXd psi;                   // Ψ(q, q̇): every term of the equations of motion but M q̈ [N]
+  Eigen::VectorXd scratch, scratch2;     // free for the caller's solves (size n)
+};
+
+/// The tip in the hub frame (x along the undeformed filament from the hub centre, y across it, in
+/// the sense of rotation) and its derivatives in the modal coordinates q.
+struct HubFrameTip {
+  explicit HubFrameTip(int n) : dx_dq(n), dy_dq(n) {}
+  double x = 0, y = 0;       // [m]
+  double xd = 0, yd = 0;     // rates relative to the hub frame [m/s]
+  Eigen::VectorXd dx_dq, dy_dq;  // ∂x/∂q, ∂y/∂q (dimensionless)
+  // The part of the relative acceleration that does not involve q̈:
+  //   ẍ = ∂x/∂qᵀ q̈ + x_quadratic,  ÿ = ∂y/∂qᵀ q̈ + y_quadratic,  i.e. q̇ᵀ (∂²x/∂q²) q̇ and the same for y.
+  double x_quadratic = 0, y_quadratic = 0;  // [m/s²]
+};
+
+/// Energies and hub angular momentum of the filament at (q, q̇) (SPEC §3, §7). All in joules
+/// (moments of inertia in kg m², momenta in kg m²/s).
+struct EnergyTerms {
+  double t0 = 0, t1 = 0, t2 = 0;   // ½ω²∫(x²+y²)dm, ω∫(xẏ − yẋ)dm, ½q̇ᵀMq̇ [J]
+  double potential = 0;            // U [J]
+  double kinetic = 0;              // T = T0 + T1 + T2 [J]
+  double jacobi = 0;               // h = T2 − T0 + U [J], conserved in free flight
+  double spin_inertia = 0;         // J = ∫ (x² + y²) dm [kg m²]
+  double relative_momentum = 0;    // ∫ (x ẏ − y ẋ) dm [kg m²/s]
+  double angular_momentum = 0;     // H_z = ω J + ∫ (x ẏ − y ẋ) dm [kg m²/s]
+};
+
+class BeamModel {
+public:
+  virtual ~BeamModel() = default;
+
+  /// Number of generalised coordinates n.
+  virtual int modes() const = 0;
+  /// The hub's rotation (ω, θ0).
+  virtual HubMotion hub_motion() const = 0;
+  /// Distance of the undeformed tip from the hub centre, r_h + L [m].
+  virtual double tip_radius() const = 0;
+  /// Filament length L [m] (the scale of the validity ratio |y_t|/L).
+  virtual double beam_length() const = 0;
+
+  /// A workspace for this model (the only kind its evaluations accept).
+  virtual std::unique_ptr<BeamWorkspace> make_workspace() const = 0;
+  /// ws.mass = M(q) and its Cholesky factor ws.mass_llt.
+  virtual void evaluate_mass(const Eigen::Ref<const Eigen::VectorXd>& q, BeamWorkspace& ws) const = 0;
+  /// ws.mass, ws.mass_llt and ws.psi = Ψ(q, q̇).
+  virtual void evaluate_dynamics(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                 const Eigen::Ref<const Eigen::VectorXd>& qd, BeamWorkspace& ws) const = 0;
+  /// The tip in the hub frame with its Jacobians and quadratic accelerations.
+  virtual void tip(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qd,
+                   HubFrameTip& out) const = 0;
+  /// The tip position (x, y) in the hub frame [m] (cheap: for event functions).
+  virtual Eigen::Vector2d tip_position(const Eigen::Ref<const Eigen::VectorXd>& q) const = 0;
+  /// Every energy term at (q, q̇). Overwrites the workspace.
+  virtual EnergyTerms energy(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qd,
+                             BeamWorkspace& ws) const = 0;
+  /// dH_z/dt at (q, q̇) given q̈ [N m] (the hub torque is this minus the contact force's moment).
+  virtual double angular_momentum_rate(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                       const Eigen::Ref<const Eigen::VectorXd>& qd,
+                                       const Eigen::Ref<const Eigen::VectorXd>& qdd, BeamWorkspace& ws) const = 0;
+
+  /// θ(t) [rad] and its inverse [s].
+  double theta(double t) const { return hub_motion().theta(t); }
+  double time_at(double theta_rad) const { return hub_motion().time_at(theta_rad); }
+};
+
+/// q̈ = M⁻¹(Q − Ψ) for a generalised force Q (nullptr: Q = 0, free flight) into qdd (size n).
+/// Evaluates the dynamics into ws; allocates nothing.
+void acceleration(const BeamModel& beam, const Eigen::Ref<const Eigen::VectorXd>& q,
+                  const Eigen::Ref<const Eigen::VectorXd>& qd, const Eigen::VectorXd* generalized_force,
+                  BeamWorkspace& ws, Eigen::Ref<Eigen::VectorXd> qdd);
+
+}  // namespace rotbeam

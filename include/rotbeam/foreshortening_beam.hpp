@@ -1,0 +1,61 @@
+// The thesis's beam theory (SPEC §2–§3): an inextensible Euler–Bernoulli filament with n assumed
+// cantilever modes and quadratic foreshortening, x(ξ) = r_h + ξL − qᵀISP(ξ)q/(2L), y(ξ) = S(ξ)ᵀq,
+// clamped radially to a hub of radius r_h spinning at ω. The first implementation of the
+// beam-model seam (beam_model.hpp). Everything here is fixed for a run; the state (t, q, q̇) and
+// the scratch space (ForeshorteningWorkspace, dynamics.hpp) live elsewhere.
+#pragma once
+
+#include "rotbeam/beam_model.hpp"
+#include "rotbeam/modal_integrals.hpp"
+
+#include <memory>
+
+namespace rotbeam {
+
+/// Inputs of the filament on its hub, SI units (defaults: thesis Table 5-1, 550 rpm, 5 modes).
+struct BeamParameters {
+  double length_m = 0.0635;          // L
+  double diameter_m = 5.08e-4;       // D (circular section)
+  double density_kg_m3 = 7800.0;     // ρ
+  double youngs_modulus_pa = 2.2e11; // E
+  int modes = 5;                     // n
+  double hub_radius_m = 0.0635;      // r_h
+  double speed_rpm = 550.0;          // hub spin
+};
+
+class ForeshorteningBeam final : public BeamModel {
+public:
+  int n = 0;                     // number of assumed modes
+  double length = 0;             // L [m]
+  double hub_radius = 0;         // r_h [m]
+  double omega = 0;              // ω [rad/s]
+  double theta0 = 0;             // beam angle at t = 0 [rad]
+  double mass_per_length = 0;    // ρA [kg/m]
+  double bending_stiffness = 0;  // EI [N m²]
+  double mass = 0;               // m = ρAL [kg]
+  std::shared_ptr<const ModalIntegrals> integrals;
+
+  int modes() const override { return n; }
+  HubMotion hub_motion() const override { return {omega, theta0}; }
+  double tip_radius() const override { return hub_radius + length; }
+  double beam_length() const override { return length; }
+  std::unique_ptr<BeamWorkspace> make_workspace() const override;
+  void evaluate_mass(const Eigen::Ref<const Eigen::VectorXd>& q, BeamWorkspace& ws) const override;
+  void evaluate_dynamics(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qd,
+                         BeamWorkspace& ws) const override;
+  /// x_t = r_h + L − qᵀISP(1)q/(2L), y_t = S(1)ᵀq; ∂x/∂q = −ISP(1)q/L, ∂y/∂q = S(1);
+  /// x_quadratic = −q̇ᵀISP(1)q̇/L, y_quadratic = 0.
+  void tip(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qd,
+           HubFrameTip& out) const override;
+  Eigen::Vector2d tip_position(const Eigen::Ref<const Eigen::VectorXd>& q) const override;
+  EnergyTerms energy(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qd,
+                     BeamWorkspace& ws) const override;
+  double angular_momentum_rate(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qd,
+                               const Eigen::Ref<const Eigen::VectorXd>& qdd, BeamWorkspace& ws) const override;
+};
+
+/// Builds the model; θ0 = `theta0_rad` (default −π/2). Throws std::invalid_argument on
+/// non-physical values.
+ForeshorteningBeam make_beam(const BeamParameters& p, double theta0_rad = kDefaultStartAngleDeg * M_PI / 180.0);
+
+}  // namespace rotbeam

@@ -1,0 +1,38 @@
+// Settings of a pass (SPEC §6, §9 [simulation] and [output]): the scheme, its steps or tolerances,
+// and the recording. Every default is defined here once; the configuration reads into this struct.
+#pragma once
+
+namespace rotbeam {
+
+/// The integration scheme under the pass driver (SPEC §6).
+enum class Scheme {
+  adaptive,  // error-controlled Dormand–Prince 5(4) with dense output and located events (default)
+  thesis,    // the thesis's fixed-step RK5 and predictor–corrector (thesis §4.6–4.7)
+};
+const char* scheme_name(Scheme s);
+
+struct PassOptions {
+  Scheme scheme = Scheme::adaptive;   // simulation.scheme
+  double end_angle_deg = 90.0;        // simulation.end_angle_deg: stop angle θ [deg]
+  // Thesis scheme (thesis §4.6–4.7).
+  double free_step_s = 1e-6;          // simulation.free_step_s: RK5 step in free flight [s]
+  double contact_step_s = 1e-7;       // simulation.contact_step_s: predictor–corrector step [s]
+  double fine_contact_step_s = 1e-8;  // simulation.fine_contact_step_s: … while 0 < |λ| < fine_below_n [s]
+  double fine_below_n = 1e-4;         // simulation.fine_below_n [N]
+  double corrector_tolerance = 1e-5;  // simulation.corrector_tolerance: relative change of λ between iterates
+  int corrector_max_iterations = 50;  // simulation.corrector_max_iterations
+  bool thesis_dcdt = false;           // compat.thesis_dcdt: ∂C/∂t forced to −∇Cᵀu^p (thesis §6.3)
+  // Adaptive scheme (SPEC §6).
+  double rtol = 1e-9;                 // simulation.rtol
+  double atol = 1e-12;                // simulation.atol
+  double max_step_s = 2e-5;           // simulation.max_step_s: upper bound on the adaptive step [s]
+  double event_tolerance_s = 1e-13;   // events located to this bracket width [s]
+  // Both schemes.
+  int max_impacts = 10000;                 // simulation.max_impacts
+  double deflection_warning_ratio = 0.1;   // simulation.deflection_warning_ratio: warn past max |y_t|/L
+  bool deflection_limit_is_error = false;  // simulation.deflection_limit_is_error: stop with `validity`
+  // Recording.
+  double output_interval_s = 1e-5;    // output.interval_s: history sampling (events always recorded exactly)
+};
+
+}  // namespace rotbeam

@@ -1,0 +1,29 @@
+// The thesis's flat rigid surface X = d (SPEC §1, §4): C = X_t − d, ∇C = ∂X_t/∂q,
+// ∂C/∂t = −ωY_t, Ċ = V_X, γ = the X part of the tip's bias acceleration; normal +X, tangent +Y,
+// slip V_t = V_Y (the plane is at rest).
+#pragma once
+
+#include "rotbeam/surface.hpp"
+
+namespace rotbeam {
+
+class Plane final : public Surface {
+public:
+  /// The plane X = d at distance d [m] from the hub centre.
+  explicit Plane(double distance_m) : distance_(distance_m) {}
+  double distance() const { return distance_; }
+
+  double gap(const Eigen::Vector2d& position, double t) const override;
+  void contact_geometry(TipKinematics& tip) const override;
+  /// θ* = −acos(d/r) + 2πk, the first such angle ≥ θ_from (NaN when d ≥ r: never reached).
+  double first_contact_angle(double radius, double theta_from) const override;
+  nlohmann::json describe() const override;
+
+private:
+  double distance_;
+};
+
+/// The plane that the undeformed tip (at r_h + L) penetrates by p·L at its deepest: d = r_h + L − p·L.
+Plane plane_at_depth(const BeamModel& beam, double depth_fraction);
+
+}  // namespace rotbeam

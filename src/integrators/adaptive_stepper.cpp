@@ -1,0 +1,336 @@
+// The adaptive event-driven scheme as a stepper (SPEC §6): Dormand–Prince 5(4) with dense output
+// from Boost.Odeint, roots located on the dense output, projection onto the constraint in contact.
+//
+// State x = (q, q̇, W, W_f, I_n): W = ∫q̇ᵀQ dt, W_f = ∫F_t V_t dt, I_n = ∫F_n dt are integrated with
+// the motion (under the same error control) and reset after every accepted contact step, so the
+// energy audit and the contact integrals are as accurate as the tolerance.
+//   free flight  q̈ = −M⁻¹Ψ; root C = 0 (upward)
+//   contact      q̈ = M⁻¹(−Ψ + λ∇C + |λ|Q*) with λ from a λ + b|λ| = c at every evaluation;
+//                roots λ = 0 (upward) and s_t V_t = 0 (downward); before each step q and q̇ are
+//                projected (mass-weighted) onto C = 0 and Ċ = 0, and again at its end
+// Each step's dense output is sampled at interior points before root finding (TOMS 748), so a
+// crossing and re-crossing within one step is still found.
+#include "rotbeam/rigid_contact.hpp"
+#include "rotbeam/stepper.hpp"
+#include "rotbeam/detail/diagnostics.hpp"
+
+#include <boost/math/tools/toms748_solve.hpp>
+#include <boost/numeric/odeint.hpp>
+#include <cmath>
+#include <functional>
+
+namespace rotbeam {
+
+namespace {
+
+namespace odeint = boost::numeric::odeint;
+using State = std::vector<double>;
+using DenseStepper = odeint::result_of::make_dense_output<odeint::runge_kutta_dopri5<State>>::type;
+
+constexpr int kSamplesPerStep = 4;  // interior samples of the dense output per step
+// An accepted step shorter than this fraction of the pass means the tolerance cannot be met in
+// double precision (at rtol ≥ 1e-13 the steps stay above ~1e-9 s for a pass of ~1e-2 s).
+constexpr double kMinStepFraction = 1e-12;
+
+using detail::short_number;
+
+class AdaptiveStepper final : public Stepper {
+public:
+  AdaptiveStepper(const System& system, const PassOptions& options)
+      : sys_(system),
+        opt_(options),
+        n_(system.beam.modes()),
+        ws_(system.beam.make_workspace()),
+        ews_(system.beam.make_workspace()),
+        tip_(n_),
+        etip_(n_),
+        x_(2 * n_ + 3, 0.0),
+        xs_(2 * n_ + 3, 0.0),
+        q_(n_),
+        qd_(n_),
+        qstar_(n_),
+        force_(n_),
+        w_(n_),
+        stepper_(odeint::make_dense_output(options.atol, options.rtol, options.max_step_s,
+                                           odeint::runge_kutta_dopri5<State>())) {}
+
+  StepperTraits traits() const override { return {Scheme::adaptive, true, true}; }
+
+  void begin_free(const FilamentState& s, bool) override {
+    phase_ = Phase::free;
+    t_ = s.t;
+    q_ = s.q;
+    qd_ = s.qd;
+    reinitialize();
+    // Just after a bounce or a separation the tip sits on the surface (C ≈ 0) and recedes, after a
+    // λ = 0 separation only tangentially (C̈ = 0), so the dense output's error can put C a hair above
+    // zero: a root there is not an impact (SPEC §5). The detector is armed once the tip has been
+    // below −ε; until then only a penetration beyond +ε counts. ε is ten times the local error
+    // allowed on the tip position.
+    eps_ = 10.0 * (opt_.atol + opt_.rtol * sys_.beam.tip_radius());
+    const double c = gap(sys_.beam, sys_.surface, t_, q_);
+    armed_ = c < -eps_;
+    offset_ = armed_ ? 0.0 : eps_;
+    g_prev_ = c - offset_;
+  }
+
+  void begin_contact(const FilamentState&, double) override { phase_ = Phase::contact; }
+
+  StepOutcome step(FilamentState& s, double t_stop) override {
+    return s.phase == Phase::free ? free_step(s, t_stop) : contact_step(s, t_stop);
+  }
+
+  const StepperStatistics& statistics() const override { return stats_; }
+
+private:
+  // ---- state packing ------------------------------------------------------------------------
+  void pack() {
+    for (int i = 0; i < n_; ++i) {
+      x_[i] = q_[i];
+      x_[n_ + i] = qd_[i];
+    }
+    x_[2 * n_] = x_[2 * n_ + 1] = x_[2 * n_ + 2] = 0.0;
+  }
+  void unpack(const State& x) {
+    for (int i = 0; i < n_; ++i) {
+      q_[i] = x[i];
+      qd_[i] = x[n_ + i];
+    }
+  }
+  StepIntegrals integrals_of(const State& x) const { return {x[2 * n_], x[2 * n_ + 1], x[2 * n_ + 2]}; }
+  void store(FilamentState& s) const {
+    s.t = t_;
+    s.q = q_;
+    s.qd = qd_;
+  }
+
+  // ---- right-hand side ----------------------------------------------------------------------
+  void rhs(const State& x, State& dxdt, double t) {
+    ++stats_.rhs_evaluations;
+    const Eigen::Map<const Eigen::VectorXd> q(x.data(), n_), qd(x.data() + n_, n_);
+    Eigen::Map<Eigen::VectorXd> dq(dxdt.data(), n_), a(dxdt.data() + n_, n_);
+    dq = qd;
+    if (phase_ == Phase::free) {
+      acceleration(sys_.beam, q, qd, nullptr, *ws_, a);
+      dxdt[2 * n_] = dxdt[2 * n_ + 1] = dxdt[2 * n_ + 2] = 0.0;
+      return;
+    }
+    const AccelerationMultiplier am =
+        acceleration_multiplier(sys_.beam, sys_.surface, sys_.law.friction, t, q, qd, slip_, *ws_, tip_);
+    if (am.solution.status != MultiplierSolution::Status::unique && !painleve_) {
+      painleve_ = true;
+      painleve_t_ = t;
+      painleve_abc_[0] = am.a, painleve_abc_[1] = am.b, painleve_abc_[2] = am.c;
+    }
+    // Past a separation (λ > 0) the contact force is zero; the step is cut at λ = 0 anyway.
+    const double lambda = std::min(am.solution.lambda, 0.0);
+    const ContactLoad load = contact_load(sys_.law.friction, tip_, qd, lambda, slip_, force_);
+    a = force_ - ws_->psi;
+    ws_->mass_llt.solveInPlace(a);
+    dxdt[2 * n_] = load.power;
+    dxdt[2 * n_ + 1] = load.slip_power;
+    dxdt[2 * n_ + 2] = load.normal_force;
+  }
+
+  // ---- root functions on the dense output ---------------------------------------------------
+  double state_gap(double t, const State& x) {
+    const Eigen::Map<const Eigen::VectorXd> q(x.data(), n_);
+    return gap(sys_.beam, sys_.surface, t, q);
+  }
+  double state_lambda(double t, const State& x) {
+    const Eigen::Map<const Eigen::VectorXd> q(x.data(), n_), qd(x.data() + n_, n_);
+    return acceleration_multiplier(sys_.beam, sys_.surface, sys_.law.friction, t, q, qd, slip_, *ews_, etip_)
+        .solution.lambda;
+  }
+  double state_slip_speed(double t, const State& x) {
+    const Eigen::Map<const Eigen::VectorXd> q(x.data(), n_), qd(x.data() + n_, n_);
+    tip_kinematics(sys_.beam, sys_.surface, t, q, qd, etip_);
+    return slip_ * etip_.slip_speed;
+  }
+
+  // First t in (ta, tb] where g changes from < 0 to ≥ 0, given g(ta) < 0; NaN if none.
+  double first_root(const std::function<double(double)>& g, double ta, double tb, double ga) {
+    double t_prev = ta, g_prev = ga;
+    for (int k = 1; k <= kSamplesPerStep; ++k) {
+      const double tk = ta + (tb - ta) * k / kSamplesPerStep;
+      const double gk = g(tk);
+      if (g_prev < 0.0 && gk >= 0.0) {
+        boost::uintmax_t iters = 200;
+        const double tol_s = opt_.event_tolerance_s;
+        const auto tol = [tol_s](double a, double b) { return std::abs(b - a) <= tol_s; };
+        const auto br = boost::math::tools::toms748_solve(g, t_prev, tk, g_prev, gk, tol, iters);
+        return br.second;
+      }
+      t_prev = tk;
+      g_prev = gk;
+    }
+    return NAN;
+  }
+
+  // ---- projection onto C = 0, Ċ = 0 (mass-weighted) ------------------------------------------
+  void project(double t) {
+    for (int it = 0; it < 4; ++it) {
+      tip_kinematics(sys_.beam, sys_.surface, t, q_, qd_, tip_);
+      if (std::abs(tip_.gap) <= 1e-15 * sys_.beam.tip_radius()) break;
+      sys_.beam.evaluate_mass(q_, *ws_);
+      w_ = tip_.grad_gap;
+      ws_->mass_llt.solveInPlace(w_);
+      q_ -= (tip_.gap / tip_.grad_gap.dot(w_)) * w_;
+    }
+    tip_kinematics(sys_.beam, sys_.surface, t, q_, qd_, tip_);
+    sys_.beam.evaluate_mass(q_, *ws_);
+    w_ = tip_.grad_gap;
+    ws_->mass_llt.solveInPlace(w_);
+    qd_ -= (tip_.gap_rate / tip_.grad_gap.dot(w_)) * w_;
+  }
+
+  void reinitialize() {
+    pack();
+    stepper_.initialize(x_, t_, std::max(dt_, 1e-9));
+  }
+
+  // One accepted step of the dense-output stepper; false (with `out` set to a step_underflow
+  // failure at the current state) when the step-size control cannot meet the tolerance.
+  bool advance(double t_stop, double& ta, double& tb, StepOutcome& out) {
+    try {
+      const auto interval = stepper_.do_step([this](const State& x, State& d, double t) { rhs(x, d, t); });
+      ta = interval.first;
+      tb = interval.second;
+    } catch (const std::exception& e) {
+      return underflow(std::string("the step-size control failed: ") + e.what(), out);
+    }
+    dt_ = stepper_.current_time_step();
+    ++stats_.steps;
+    const double min_step = kMinStepFraction * t_stop;
+    if (!(tb > ta) || tb - ta < min_step)
+      return underflow("the accepted step " + short_number(tb - ta) + " s is below " + short_number(min_step) + " s", out);
+    return true;
+  }
+
+  bool underflow(const std::string& why, StepOutcome& out) {
+    out = failed(FailureKind::step_underflow,
+                 why + " (rtol = " + short_number(opt_.rtol) + ", atol = " + short_number(opt_.atol) + ", last step " +
+                     short_number(dt_) + " s): the tolerance cannot be met in double precision here");
+    return false;
+  }
+
+  StepOutcome failed(FailureKind kind, std::string message) const {
+    StepOutcome out;
+    out.status = StepStatus::failed;
+    out.failure = NumericalFailure{kind, t_, 0.0, std::move(message)};
+    return out;
+  }
+
+  StepOutcome free_step(FilamentState& s, double t_stop) {
+    StepOutcome out;
+    double ta = 0, tb = 0;
+    if (!advance(t_stop, ta, tb, out)) return out;
+    const double te = std::min(tb, t_stop);
+    const double offset = offset_;
+    auto g = [&](double t) {
+      stepper_.calc_state(t, xs_);
+      return state_gap(t, xs_) - offset;
+    };
+    const double root = first_root(g, ta, te, std::min(g_prev_, -1e-300));
+    if (!std::isnan(root)) {
+      stepper_.calc_state(root, xs_);
+      unpack(xs_);
+      t_ = root;
+      store(s);
+      out.status = StepStatus::root;
+      out.root = Root::gap_closes;
+      return out;
+    }
+    if (te < tb) stepper_.calc_state(te, xs_);
+    unpack(te < tb ? xs_ : stepper_.current_state());
+    if (!q_.allFinite() || !qd_.allFinite()) return failed(FailureKind::non_finite, "the free-flight state became non-finite");
+    t_ = te;
+    const double c_now = gap(sys_.beam, sys_.surface, t_, q_);
+    if (!armed_ && c_now < -eps_) armed_ = true, offset_ = 0.0;
+    g_prev_ = c_now - offset_;
+    store(s);
+    return out;
+  }
+
+  StepOutcome contact_step(FilamentState& s, double t_stop) {
+    const FrictionModel& friction = sys_.law.friction;
+    StepOutcome out;
+    t_ = s.t;
+    q_ = s.q;
+    qd_ = s.qd;
+    slip_ = s.slip;
+    project(t_);
+    store(s);  // the projected state is the start of the step (and the last good one)
+    reinitialize();
+    painleve_ = false;
+    const double lambda0 = std::min(state_lambda(t_, x_), 0.0);
+    const double slip0 = state_slip_speed(t_, x_);
+    double ta = 0, tb = 0;
+    if (!advance(t_stop, ta, tb, out)) return out;
+    if (painleve_) {
+      out = failed(FailureKind::painleve, detail::painleve_message(painleve_abc_[0], painleve_abc_[1], painleve_abc_[2]));
+      out.failure->t = painleve_t_;
+      return out;
+    }
+    const double te = std::min(tb, t_stop);
+    // Separation: λ crosses 0 upward. Slip stop: s·V_t crosses 0 downward.
+    auto g_lambda = [&](double t) {
+      stepper_.calc_state(t, xs_);
+      return state_lambda(t, xs_);
+    };
+    auto g_slip = [&](double t) {
+      stepper_.calc_state(t, xs_);
+      return -state_slip_speed(t, xs_);
+    };
+    const double t_sep = lambda0 < 0.0 ? first_root(g_lambda, ta, te, lambda0) : NAN;
+    const double t_slip = slip0 > 0.0 ? first_root(g_slip, ta, te, -slip0) : NAN;
+    double t_event = te;
+    Root root = Root::none;
+    if (!std::isnan(t_sep)) t_event = t_sep, root = Root::multiplier_vanishes;
+    if (!std::isnan(t_slip) && t_slip < t_event) t_event = t_slip, root = Root::slip_stops;
+    if (t_event < tb || root != Root::none) stepper_.calc_state(t_event, xs_);
+    const State& xe = (t_event < tb || root != Root::none) ? xs_ : stepper_.current_state();
+    unpack(xe);
+    out.integrals = integrals_of(xe);
+    const double t_start = t_;
+    t_ = t_event;
+    project(t_);
+    if (!q_.allFinite() || !qd_.allFinite()) {
+      t_ = t_start;
+      return failed(FailureKind::non_finite, "the contact state became non-finite");
+    }
+    store(s);
+    out.root = root;
+    out.status = root == Root::none ? StepStatus::advanced : StepStatus::root;
+    if (root == Root::multiplier_vanishes) return out;
+    const AccelerationMultiplier am =
+        acceleration_multiplier(sys_.beam, sys_.surface, friction, t_, q_, qd_, slip_, *ws_, tip_);
+    out.load = contact_load(friction, tip_, qd_, std::min(am.solution.lambda, 0.0), slip_, force_);
+    return out;
+  }
+
+  const System sys_;
+  const PassOptions opt_;
+  int n_;
+  std::unique_ptr<BeamWorkspace> ws_, ews_;
+  TipKinematics tip_, etip_;
+  State x_, xs_;
+  Eigen::VectorXd q_, qd_, qstar_, force_, w_;
+  DenseStepper stepper_;
+  StepperStatistics stats_;
+  Phase phase_ = Phase::free;
+  double t_ = 0, dt_ = 1e-7, slip_ = 0;
+  // The free-flight gap detector (see begin_free).
+  double eps_ = 0, offset_ = 0, g_prev_ = 0;
+  bool armed_ = false;
+  bool painleve_ = false;
+  double painleve_t_ = 0, painleve_abc_[3] = {0, 0, 0};
+};
+
+}  // namespace
+
+std::unique_ptr<Stepper> make_adaptive_stepper(const System& system, const PassOptions& options) {
+  return std::make_unique<AdaptiveStepper>(system, options);
+}
+
+}  // namespace rotbeam

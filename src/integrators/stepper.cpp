@@ -1,0 +1,12 @@
+#include "rotbeam/stepper.hpp"
+
+namespace rotbeam {
+
+std::unique_ptr<Stepper> make_stepper(const System& system, const PassOptions& options) {
+  return options.scheme == Scheme::thesis ? make_thesis_stepper(system, options)
+                                          : make_adaptive_stepper(system, options);
+}
+
+const char* scheme_name(Scheme s) { return s == Scheme::thesis ? "thesis" : "adaptive"; }
+
+}  // namespace rotbeam

@@ -1,0 +1,97 @@
+#include "rotbeam/foreshortening_beam.hpp"
+
+#include "rotbeam/dynamics.hpp"
+#include "rotbeam/energy.hpp"
+#include "rotbeam/detail/quadratic_form.hpp"
+
+#include <cassert>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace rotbeam {
+
+namespace {
+// The workspace a ForeshorteningBeam evaluates into is always one it made (make_workspace).
+ForeshorteningWorkspace& own(BeamWorkspace& ws) {
+  assert(dynamic_cast<ForeshorteningWorkspace*>(&ws) != nullptr);
+  return static_cast<ForeshorteningWorkspace&>(ws);
+}
+}  // namespace
+
+std::unique_ptr<BeamWorkspace> ForeshorteningBeam::make_workspace() const {
+  return std::make_unique<ForeshorteningWorkspace>(n);
+}
+
+void ForeshorteningBeam::evaluate_mass(const Eigen::Ref<const Eigen::VectorXd>& q, BeamWorkspace& ws) const {
+  rotbeam::evaluate_mass(*this, q, own(ws));
+  ws.mass_llt.compute(ws.mass);
+}
+
+void ForeshorteningBeam::evaluate_dynamics(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                           const Eigen::Ref<const Eigen::VectorXd>& qd, BeamWorkspace& ws) const {
+  rotbeam::evaluate_dynamics(*this, q, qd, own(ws));
+}
+
+void ForeshorteningBeam::tip(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qd,
+                             HubFrameTip& out) const {
+  const ModalIntegrals& mi = *integrals;
+  const double L = length;
+  out.dx_dq.noalias() = mi.isp_tip * q;  // ISP(1) q, scaled below
+  out.x = hub_radius + L - q.dot(out.dx_dq) / (2.0 * L);
+  out.xd = -qd.dot(out.dx_dq) / L;
+  out.dx_dq /= -L;
+  out.y = mi.s_tip.dot(q);
+  out.yd = mi.s_tip.dot(qd);
+  out.dy_dq = mi.s_tip;
+  out.x_quadratic = -detail::quadratic_form(mi.isp_tip, qd) / L;
+  out.y_quadratic = 0.0;
+}
+
+Eigen::Vector2d ForeshorteningBeam::tip_position(const Eigen::Ref<const Eigen::VectorXd>& q) const {
+  const ModalIntegrals& mi = *integrals;
+  return {hub_radius + length - detail::quadratic_form(mi.isp_tip, q) / (2.0 * length), mi.s_tip.dot(q)};
+}
+
+EnergyTerms ForeshorteningBeam::energy(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                       const Eigen::Ref<const Eigen::VectorXd>& qd, BeamWorkspace& ws) const {
+  return evaluate_energy(*this, q, qd, own(ws));
+}
+
+double ForeshorteningBeam::angular_momentum_rate(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                                 const Eigen::Ref<const Eigen::VectorXd>& qd,
+                                                 const Eigen::Ref<const Eigen::VectorXd>& qdd, BeamWorkspace& ws) const {
+  return rotbeam::angular_momentum_rate(*this, q, qd, qdd, own(ws));
+}
+
+ForeshorteningBeam make_beam(const BeamParameters& p, double theta0_rad) {
+  auto positive = [](double v, const char* what) {
+    if (!(v > 0.0) || !std::isfinite(v))
+      throw std::invalid_argument(std::string(what) + " must be positive and finite, got " + std::to_string(v));
+  };
+  positive(p.length_m, "beam length");
+  positive(p.diameter_m, "beam diameter");
+  positive(p.density_kg_m3, "density");
+  positive(p.youngs_modulus_pa, "Young's modulus");
+  if (!(p.hub_radius_m >= 0.0) || !std::isfinite(p.hub_radius_m))
+    throw std::invalid_argument("hub radius must be >= 0, got " + std::to_string(p.hub_radius_m));
+  if (!std::isfinite(p.speed_rpm) || !std::isfinite(theta0_rad))
+    throw std::invalid_argument("speed and start angle must be finite");
+  if (p.modes < 1 || p.modes > kMaxModes)
+    throw std::invalid_argument("modes must be in 1.." + std::to_string(kMaxModes) + ", got " + std::to_string(p.modes));
+  ForeshorteningBeam m;
+  m.n = p.modes;
+  m.length = p.length_m;
+  m.hub_radius = p.hub_radius_m;
+  m.omega = p.speed_rpm * M_PI / 30.0;
+  m.theta0 = theta0_rad;
+  const double area = M_PI * p.diameter_m * p.diameter_m / 4.0;
+  const double inertia = M_PI * std::pow(p.diameter_m, 4) / 64.0;
+  m.mass_per_length = p.density_kg_m3 * area;
+  m.bending_stiffness = p.youngs_modulus_pa * inertia;
+  m.mass = m.mass_per_length * p.length_m;
+  m.integrals = modal_integrals(p.modes);
+  return m;
+}
+
+}  // namespace rotbeam

@@ -1,0 +1,49 @@
+// The pass driver (SPEC §4–§6): the phase logic of a pass, written once over the steppers'
+// contract (stepper.hpp). free flight → (touch) impact or contact → (λ = 0) separation, with the
+// slip decisions (stick, lift-off, slip reversal), Painlevé's paradox, the Zeno floor and the
+// chatter guard. The scheme only advances the state of a phase and reports the roots it crosses.
+#pragma once
+
+#include "pass_recorder.hpp"
+
+#include "rotbeam/pass.hpp"
+
+namespace rotbeam {
+
+class PassDriver {
+public:
+  PassDriver(const System& system, const PassOptions& options, Stepper& stepper, PassRecorder& recorder);
+  /// Runs the pass from `initial` to the end angle or a diagnosed failure.
+  void run(const InitialConditions& initial);
+
+private:
+  void loop();
+  void free_flight();
+  void contact();
+  // A touch at the current state: an impact for an approaching tip, else a grazing contact start.
+  void touch();
+  // Momentum-balance impact at the current state; chooses the next phase.
+  void impact();
+  // Enters sustained contact at the current state (C = Ċ = 0) if the slip analysis allows it.
+  void begin_contact(const std::string& why);
+  // Free flight from the current state after a separation or lift-off.
+  void separate();
+  void fail(FailureKind kind, double t, const std::string& message, Phase phase);
+  void finish(Phase phase);
+  bool check_slip();
+
+  const System system_;
+  const PassOptions options_;
+  Stepper& stepper_;
+  PassRecorder& rec_;
+  StepperTraits traits_;
+  std::unique_ptr<BeamWorkspace> ws_;
+  TipKinematics tip_;
+  FilamentState state_;
+  Eigen::VectorXd qd_before_;
+  double t_end_ = 0;
+  bool done_ = false;
+  int instant_transitions_ = 0;  // phase changes without time advancing (chatter guard)
+};
+
+}  // namespace rotbeam
