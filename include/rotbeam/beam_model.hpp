@@ -90,6 +90,8 @@ public:
                    HubFrameTip& out) const = 0;
   /// The tip position (x, y) in the hub frame [m] (cheap: for event functions).
   virtual Eigen::Vector2d tip_position(const Eigen::Ref<const Eigen::VectorXd>& q) const = 0;
+  /// The tip's deflection across the undeformed filament, |y_t| [m] (the validity measure |y_t|/L).
+  virtual double tip_deflection(const Eigen::Ref<const Eigen::VectorXd>& q) const = 0;
   /// Every energy term at (q, q̇). Overwrites the workspace.
   virtual EnergyTerms energy(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qd,
                              BeamWorkspace& ws) const = 0;

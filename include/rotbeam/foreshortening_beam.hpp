@@ -48,6 +48,8 @@ public:
   void tip(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qd,
            HubFrameTip& out) const override;
   Eigen::Vector2d tip_position(const Eigen::Ref<const Eigen::VectorXd>& q) const override;
+  /// |y_t| = |S(1)ᵀq|.
+  double tip_deflection(const Eigen::Ref<const Eigen::VectorXd>& q) const override;
   EnergyTerms energy(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qd,
                      BeamWorkspace& ws) const override;
   double angular_momentum_rate(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qd,

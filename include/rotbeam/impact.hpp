@@ -41,6 +41,11 @@ struct ImpactResult {
   double delta_t2 = 0;                 // change of ½q̇ᵀMq̇ [J] = −loss − P ∂C/∂t
 };
 
+/// Whether the tip leaves the surface after the impact. The law makes Ċ⁺ = −e Ċ⁻ exactly, so it
+/// does iff e > 0 (above 1e-12); after a plastic impact the recomputed Ċ⁺ is zero only to round-off
+/// of the tip velocity (~1e-15 ω(r_h + L)), and its sign must not decide.
+inline bool rebounds(const ImpactResult& r) { return r.restitution > 1e-12; }
+
 /// Applies the impact law at (t, q) to qd in place. Requires an approaching tip (Ċ⁻ > 0);
 /// throws std::domain_error otherwise (a receding tip has no impact, SPEC §5).
 ImpactResult apply_impact(const BeamModel& beam, const Surface& surface, const ImpactLaw& law, double t,

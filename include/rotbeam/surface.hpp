@@ -6,7 +6,7 @@
 #pragma once
 
 #include "rotbeam/beam_model.hpp"
-#include "rotbeam/kinematics.hpp"
+#include "rotbeam/tip_kinematics.hpp"
 
 #include <memory>
 #include <nlohmann/json.hpp>

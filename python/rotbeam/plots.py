@@ -45,9 +45,28 @@ def case_title(summary):
             f"μ = {c['surface']['friction']:g}, {c['beam']['modes']} modes, {summary['scheme']} scheme")
 
 
-def surface_distance(summary):
+def surface_of(summary):
+    """The surface as the run described it (summary.json `surface`). Folders written before the
+    surface described itself hold the thesis's plane, rebuilt here from their configuration."""
+    if "surface" in summary:
+        return summary["surface"]
     c = summary["config"]
-    return c["hub"]["radius_m"] + c["beam"]["length_m"] * (1 - c["surface"]["depth_fraction"])
+    return {"shape": "plane",
+            "distance_m": c["hub"]["radius_m"] + c["beam"]["length_m"] * (1 - c["surface"]["depth_fraction"])}
+
+
+def surface_x(surface, y):
+    """X (m) of the surface at the global Y values `y` (m), for drawing it in the (Y, −X) plane."""
+    y = np.asarray(y, dtype=float)
+    if surface["shape"] == "plane":
+        return np.full_like(y, surface["distance_m"])
+    raise ValueError(f"cannot draw a surface of shape {surface['shape']!r}")
+
+
+def draw_surface(ax, surface, y_mm, **style):
+    """The surface as a curve −X against Y (mm) over the Y values `y_mm`."""
+    y = np.linspace(np.nanmin(y_mm), np.nanmax(y_mm), 200)
+    ax.plot(y, -surface_x(surface, y * 1e-3) * 1e3, **style)
 
 
 def _impacts(events):
@@ -91,7 +110,7 @@ def plot_run(folder, out):
     plt.close(fig)
 
     # 2. Tip path with close-ups (thesis Figure 13: −X against Y).
-    d = surface_distance(summary)
+    surface = surface_of(summary)
     fig, axes = plt.subplots(2, 2, figsize=(11, 8))
     phase_colors = {"free": "C0", "contact": "C1", "stick": "C2"}
     X, Y = h["x_tip_m"] * 1e3, h["y_tip_m"] * 1e3
@@ -100,31 +119,34 @@ def plot_run(folder, out):
             sel = h["phase"] == ph
             if sel.any():
                 ax.plot(Y[sel], -X[sel], ".", ms=1.5, color=color, label=ph)
-        ax.axhline(-d * 1e3, color="k", lw=1, label="surface X = d")
+        draw_surface(ax, surface, Y, color="k", lw=1, label="surface")
         if imp:
-            ax.plot(events["y_tip_m"][imp] * 1e3, np.full(len(imp), -d * 1e3), "v", color="C3", ms=4, label="impacts")
+            y_imp = events["y_tip_m"][imp]
+            ax.plot(y_imp * 1e3, -surface_x(surface, y_imp) * 1e3, "v", color="C3", ms=4, label="impacts")
         ax.set_xlabel("tip position Y (mm)")
         ax.set_ylabel("−X (mm)")
         ax.grid(alpha=0.3)
     path(axes[0, 0])
     axes[0, 0].set_title("whole pass", fontsize=9)
     axes[0, 0].legend(fontsize=7, markerscale=2)
-    near = np.abs(X - d * 1e3) < 2.0
+    near = h["gap_m"] > -2e-3
     if near.any():
         path(axes[0, 1])
         axes[0, 1].set_xlim(Y[near].min() - 1, Y[near].max() + 1)
-        axes[0, 1].set_ylim(-d * 1e3 - 0.05, -d * 1e3 + 2.0)
+        x_near = surface_x(surface, h["y_tip_m"][near]) * 1e3
+        axes[0, 1].set_ylim(-x_near.max() - 0.05, -x_near.min() + 2.0)
         axes[0, 1].set_title("close-up: the contact region", fontsize=9)
     if imp:
         y0 = events["y_tip_m"][imp[0]] * 1e3
+        x0 = float(surface_x(surface, [y0 * 1e-3])[0]) * 1e3
         path(axes[1, 0])
         axes[1, 0].set_xlim(y0 - 0.5, y0 + 1.5)
-        axes[1, 0].set_ylim(-d * 1e3 - 0.01, -d * 1e3 + 0.3)
+        axes[1, 0].set_ylim(-x0 - 0.01, -x0 + 0.3)
         axes[1, 0].set_title("close-up: the first impact and the bounce back", fontsize=9)
     axes[1, 1].plot(h["theta_deg"], h["gap_m"] * 1e3, lw=0.8)
     axes[1, 1].axhline(0, color="k", lw=0.8)
     axes[1, 1].set_xlabel(f"hub angle θ ({DEG})")
-    axes[1, 1].set_ylabel("gap C = X_t − d (mm)")
+    axes[1, 1].set_ylabel("gap C (mm)")
     axes[1, 1].set_ylim(min(-5, np.nanmin(h["gap_m"]) * 1e3), 0.5)
     axes[1, 1].grid(alpha=0.3)
     axes[1, 1].set_title("gap against the hub angle", fontsize=9)

@@ -11,7 +11,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from .plots import read_csv, surface_distance  # noqa: E402
+from .plots import draw_surface, read_csv, surface_of, surface_x  # noqa: E402
 
 MODELS = ("thesis", "physical")
 MODEL_TITLES = {"thesis": "thesis scheme, force |λ|·|∇C|", "physical": "default model, F_n = −λ"}
@@ -79,15 +79,17 @@ def figure_13(root, fig, path):
     for row, model in enumerate(MODELS):
         run = load_case(root, model, fig["curves"][0]["case"])
         h, ev, s = run["history"], run["events"], run["summary"]
-        d = surface_distance(s)
+        surface = surface_of(s)
         imp = [i for i, k in enumerate(ev["kind"]) if k == "impact"]
-        for col, (xlim, ylim, title) in enumerate([(None, None, "whole pass"), ((-20, 15), (-d * 1e3 - 0.05, -d * 1e3 + 1.5), "contact region")]):
+        x_mid = float(surface_x(surface, [0.0])[0]) * 1e3
+        for col, (xlim, ylim, title) in enumerate([(None, None, "whole pass"), ((-20, 15), (-x_mid - 0.05, -x_mid + 1.5), "contact region")]):
             ax = axes[row, col]
             for ph, color in (("free", "C0"), ("contact", "C1")):
                 sel = h["phase"] == ph
                 ax.plot(h["y_tip_m"][sel] * 1e3, -h["x_tip_m"][sel] * 1e3, ".", ms=1.2, color=color, label=ph)
-            ax.axhline(-d * 1e3, color="k", lw=0.8, label="surface")
-            ax.plot(ev["y_tip_m"][imp] * 1e3, np.full(len(imp), -d * 1e3), "v", color="C3", ms=4, label="impacts")
+            draw_surface(ax, surface, h["y_tip_m"] * 1e3, color="k", lw=0.8, label="surface")
+            ax.plot(ev["y_tip_m"][imp] * 1e3, -surface_x(surface, ev["y_tip_m"][imp]) * 1e3, "v", color="C3", ms=4,
+                    label="impacts")
             if xlim:
                 ax.set_xlim(*xlim)
                 ax.set_ylim(*ylim)
@@ -96,7 +98,8 @@ def figure_13(root, fig, path):
             ax.grid(alpha=0.3)
             ax.set_title(f"{MODEL_TITLES[model]}: {title}", fontsize=9)
         axes[row, 0].legend(fontsize=7, markerscale=3)
-        y0, x0 = ev["y_tip_m"][imp[0]], -d
+        y0 = ev["y_tip_m"][imp[0]]
+        x0 = -float(surface_x(surface, [y0])[0])
         t0 = ev["t_s"][imp[0]]
         after = (h["t_s"] > t0) & (h["t_s"] < t0 + 2e-3)
         bounce = bool(after.any() and h["y_tip_m"][after].min() < y0 - 1e-5)

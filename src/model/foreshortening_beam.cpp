@@ -40,7 +40,7 @@ void ForeshorteningBeam::tip(const Eigen::Ref<const Eigen::VectorXd>& q, const E
   out.dx_dq.noalias() = mi.isp_tip * q;  // ISP(1) q, scaled below
   out.x = hub_radius + L - q.dot(out.dx_dq) / (2.0 * L);
   out.xd = -qd.dot(out.dx_dq) / L;
-  out.dx_dq /= -L;
+  out.dx_dq *= -1.0 / L;
   out.y = mi.s_tip.dot(q);
   out.yd = mi.s_tip.dot(qd);
   out.dy_dq = mi.s_tip;
@@ -51,6 +51,10 @@ void ForeshorteningBeam::tip(const Eigen::Ref<const Eigen::VectorXd>& q, const E
 Eigen::Vector2d ForeshorteningBeam::tip_position(const Eigen::Ref<const Eigen::VectorXd>& q) const {
   const ModalIntegrals& mi = *integrals;
   return {hub_radius + length - detail::quadratic_form(mi.isp_tip, q) / (2.0 * length), mi.s_tip.dot(q)};
+}
+
+double ForeshorteningBeam::tip_deflection(const Eigen::Ref<const Eigen::VectorXd>& q) const {
+  return std::abs(integrals->s_tip.dot(q));
 }
 
 EnergyTerms ForeshorteningBeam::energy(const Eigen::Ref<const Eigen::VectorXd>& q,

@@ -12,7 +12,6 @@ namespace rotbeam {
 namespace {
 constexpr int kMaxInstantTransitions = 50;  // phase changes without time advancing → chatter diagnostic
 constexpr double kInstant = 1e-12;          // [s]: a phase that lasted less did not advance time
-constexpr double kBounceRestitution = 1e-12;  // e above which an impact is a bounce (else contact follows)
 using detail::short_number;
 }  // namespace
 
@@ -115,10 +114,7 @@ void PassDriver::impact() {
   const ImpactResult r =
       apply_impact(system_.beam, system_.surface, system_.law.impact, state_.t, state_.q, state_.qd, *ws_, tip_);
   rec_.impact(state_.t, state_.q, qd_before_, state_.qd, r);
-  // The law makes Ċ⁺ = −e Ċ⁻ exactly, so the tip bounces off iff e > 0; the recomputed Ċ⁺ of a plastic
-  // impact is zero only to round-off of the tip velocity (~1e-15 ω(r_h + L)), and its sign must not
-  // decide (at approach speeds of ~1e-4 m/s it would).
-  if (r.restitution > kBounceRestitution) {
+  if (rebounds(r)) {
     state_.phase = Phase::free;
     stepper_.begin_free(state_, false);
     return;

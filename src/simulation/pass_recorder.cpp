@@ -68,7 +68,7 @@ double PassRecorder::hub_torque(const Eigen::VectorXd& q, const Eigen::VectorXd&
 }
 
 void PassRecorder::track(double t, const Eigen::VectorXd& q) {
-  const double ratio = std::abs(system_.beam.tip_position(q).y()) / system_.beam.beam_length();
+  const double ratio = system_.beam.tip_deflection(q) / system_.beam.beam_length();
   if (ratio > result_.summary.max_tip_deflection_ratio) result_.summary.max_tip_deflection_ratio = ratio;
   if (options_.deflection_limit_is_error && ratio > options_.deflection_warning_ratio && !validity_breached_) {
     validity_breached_ = true;
