@@ -182,8 +182,8 @@ void PassFiles::open(Stream& s, const std::string& name, const std::string& head
   s.temporary_path = dir_ / (name + ".tmp." + std::to_string(::getpid()));
   s.file = std::fopen(s.temporary_path.c_str(), "wb");
   if (!s.file) throw std::runtime_error(io_error(s.final_path, "cannot write", errno));
-  s.buffer.reserve(kFlushBytes + 4096);
   s.buffer = header + "\n";
+  s.buffer.reserve(kFlushBytes + 4096);
 }
 
 void PassFiles::flush(Stream& s) {
