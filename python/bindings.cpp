@@ -70,6 +70,7 @@ py::list event_dicts(const PassResult& r) {
     d["vx_after_m_s"] = e.vx_after;
     d["restitution"] = e.restitution;
     d["impulse_n_s"] = e.impulse;
+    d["hub_work_j"] = e.hub_work;
     d["detail"] = e.detail;
     events.append(d);
   }

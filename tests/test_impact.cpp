@@ -140,3 +140,141 @@ TEST(Impact, RecedingTipIsNotAnImpact) {
   // Past θ = 0 the straight tip moves away from the surface (V_X < 0).
   EXPECT_THROW(apply_impact(model, plane, ImpactLaw{}, model.time_at(0.1), q, qd, ws, tip), std::domain_error);
 }
+
+namespace {
+// An approaching tip at a deformed state (so ∇C and ∂V_t/∂q̇ are not parallel) with a chosen slip.
+struct FrictionalImpact {
+  ForeshorteningBeam model;
+  Plane plane;
+  ForeshorteningWorkspace ws;
+  TipKinematics tip;
+  Eigen::VectorXd q, qd;
+  double t;
+  double a_nn = 0, a_nt = 0, a_tt = 0;  // the inverse-mass couplings, computed here independently
+  FrictionalImpact(int n, double rpm, unsigned seed, double slip_boost)
+      : model(make_beam([&] {
+          BeamParameters p;
+          p.modes = n;
+          p.speed_rpm = rpm;
+          return p;
+        }())),
+        plane(plane_at_depth(model, 0.02)),
+        ws(n),
+        tip(n) {
+    rotbeam::testing::random_state(model, seed, 0.015, 1.0, q, qd);
+    t = model.time_at(-10.0 * M_PI / 180.0);
+    tip_kinematics(model, plane, t, q, qd, tip);
+    // Change the slip speed along the tangential direction without changing Ċ: add a multiple of
+    // the part of ∂V_t/∂q̇ orthogonal (in M⁻¹) to ∇C.
+    evaluate_mass(model, q, ws);
+    const Eigen::LLT<Eigen::MatrixXd> llt(ws.mass);
+    const Eigen::VectorXd mn = llt.solve(tip.grad_gap), mt = llt.solve(tip.grad_tangent);
+    a_nn = tip.grad_gap.dot(mn), a_nt = tip.grad_gap.dot(mt), a_tt = tip.grad_tangent.dot(mt);
+    const Eigen::VectorXd dir = mt - (a_nt / a_nn) * mn;  // ∇Cᵀ dir = 0
+    qd += slip_boost * dir / tip.grad_tangent.dot(dir);
+    tip_kinematics(model, plane, t, q, qd, tip);
+  }
+  double energy(const Eigen::VectorXd& v) {
+    const EnergyTerms e = evaluate_energy(model, q, v, ws);
+    return e.kinetic + e.potential;
+  }
+};
+}  // namespace
+
+TEST(CoulombImpact, SlidingThroughoutFollowsTheClosedForm) {
+  // Slip fast enough never to stop: dP_t = −μ s dp all through, so Ċ⁺ = −eĊ⁻ exactly (a constant
+  // slope in p), p = (1 + e)Ċ⁻/α with α = a_nn + μ s a_nt, P_t = −μ s p, V_t⁺ = V_t⁻ − (a_nt + μ s a_tt) p.
+  for (double mu : {0.2, 0.8})
+    for (double e : {0.0, 0.5, 0.9}) {
+      FrictionalImpact c(5, 1000, 7, 5.0);
+      ASSERT_GT(c.tip.gap_rate, 0.0);
+      const double vn = c.tip.gap_rate, vt = c.tip.slip_speed, s = vt > 0 ? 1.0 : -1.0;
+      ImpactLaw law;
+      law.model = RestitutionModel::constant;
+      law.constant = e;
+      law.plastic_below_m_s = 0.0;
+      law.friction = ImpactFriction::coulomb;
+      const ImpactResult r = apply_impact(c.model, c.plane, law, c.t, c.q, c.qd, c.ws, c.tip, mu);
+      const double alpha = c.a_nn + mu * s * c.a_nt, p = (1 + e) * vn / alpha;
+      ASSERT_FALSE(r.jammed);
+      EXPECT_NEAR(r.vx_after, -e * vn, 1e-11 * vn) << "μ " << mu << " e " << e;
+      EXPECT_NEAR(-r.impulse, p, 1e-11 * p);
+      EXPECT_NEAR(r.tangential_impulse, -mu * s * p, 1e-11 * p);
+      EXPECT_NEAR(r.vy_after, vt - (c.a_nt + mu * s * c.a_tt) * p, 1e-10 * std::abs(vt));
+      EXPECT_EQ(r.vy_after > 0, vt > 0) << "still sliding the same way";
+    }
+}
+
+TEST(CoulombImpact, StickingFromTheStartFollowsTheClosedForm) {
+  // No slip at the touch and |a_nt| ≤ μ a_tt: the tip sticks throughout, P_t = (a_nt/a_tt) p, V_t⁺ = 0,
+  // and the normal slope is a_nn − a_nt²/a_tt, so Ċ⁺ = −eĊ⁻ again.
+  FrictionalImpact probe(5, 1000, 9, 0.0);
+  const double vt0 = probe.tip.slip_speed;
+  FrictionalImpact c(5, 1000, 9, -vt0);  // cancel the slip
+  ASSERT_NEAR(c.tip.slip_speed, 0.0, 1e-12);
+  const double mu = 2.0 * std::abs(c.a_nt) / c.a_tt + 0.1, e = 0.6, vn = c.tip.gap_rate;
+  ImpactLaw law;
+  law.model = RestitutionModel::constant;
+  law.constant = e;
+  law.plastic_below_m_s = 0.0;
+  law.friction = ImpactFriction::coulomb;
+  const ImpactResult r = apply_impact(c.model, c.plane, law, c.t, c.q, c.qd, c.ws, c.tip, mu);
+  const double p = (1 + e) * vn / (c.a_nn - c.a_nt * c.a_nt / c.a_tt);
+  EXPECT_NEAR(-r.impulse, p, 1e-10 * p);
+  EXPECT_NEAR(r.tangential_impulse, c.a_nt / c.a_tt * p, 1e-10 * p);
+  EXPECT_NEAR(r.vy_after, 0.0, 1e-10 * vn);
+  EXPECT_NEAR(r.vx_after, -e * vn, 1e-10 * vn);
+}
+
+TEST(CoulombImpact, NoImpactCreatesEnergyAndFrictionStaysInsideTheCone) {
+  // Over random states, slips (sliding, stopping, reversing) and laws: the impulse's work on the tip
+  // is ≤ 0 and equals the change of E = T + U less the hub's work; |P_t| ≤ μ|P|; the hub's work by
+  // the angular-momentum route (ω(ΔH_z − (R × P)_z)) closes the ledger to 1e-10 of the energies.
+  int checked = 0;
+  for (unsigned seed = 1; seed <= 12; ++seed)
+    for (double boost : {-3.0, -0.3, 0.0, 0.3, 3.0})
+      for (double mu : {0.1, 0.5, 2.0}) {
+        FrictionalImpact c(5, 550 + 200 * seed, seed, boost);
+        if (!(c.tip.gap_rate > 0.0)) continue;
+        ImpactLaw law;
+        law.friction = ImpactFriction::coulomb;
+        law.plastic_below_m_s = 0.0;
+        const Eigen::VectorXd before = c.qd;
+        const double e_before = c.energy(before);
+        const double h_before = evaluate_energy(c.model, c.q, before, c.ws).angular_momentum;
+        const ImpactResult r = apply_impact(c.model, c.plane, law, c.t, c.q, c.qd, c.ws, c.tip, mu);
+        if (r.jammed) continue;
+        ++checked;
+        const double e_after = c.energy(c.qd);
+        const double h_after = evaluate_energy(c.model, c.q, c.qd, c.ws).angular_momentum;
+        const Eigen::Vector2d at = tip_position(c.model, c.t, c.q);
+        const double hub = c.model.omega * (h_after - h_before - (at.x() * r.impulse_y - at.y() * r.impulse_x));
+        const double scale = std::abs(e_before) + std::abs(e_after);
+        EXPECT_LE(r.contact_work, 1e-12 * scale) << "seed " << seed << " boost " << boost << " μ " << mu;
+        EXPECT_LE(std::abs(r.tangential_impulse), mu * std::abs(r.impulse) * (1 + 1e-12));
+        EXPECT_NEAR(e_after - e_before, hub + r.contact_work, 1e-10 * scale);
+        EXPECT_LE(r.vx_after, 1e-12 * r.vx_before) << "the tip does not keep approaching";
+      }
+  EXPECT_GT(checked, 100);
+}
+
+TEST(ImpactLedger, HubWorkAtAFrictionlessImpactByTwoRoutes) {
+  // The hub's impulsive work ω(ΔH_z − (R × P)_z) equals ΔE − P·(V⁻ + V⁺)/2 (the inertial energy less
+  // the impulse's work), and that work is −½(1 − e²)(Ċ⁻)²/a.
+  for (double e : {0.0, 0.4, 1.0}) {
+    FrictionalImpact c(5, 2000, 3, 0.0);
+    ImpactLaw law;
+    law.model = RestitutionModel::constant;
+    law.constant = e;
+    law.plastic_below_m_s = 0.0;
+    const Eigen::VectorXd before = c.qd;
+    const double vn = c.tip.gap_rate;
+    const double e_before = c.energy(before), h_before = evaluate_energy(c.model, c.q, before, c.ws).angular_momentum;
+    const ImpactResult r = apply_impact(c.model, c.plane, law, c.t, c.q, c.qd, c.ws, c.tip);
+    const double e_after = c.energy(c.qd), h_after = evaluate_energy(c.model, c.q, c.qd, c.ws).angular_momentum;
+    const Eigen::Vector2d at = tip_position(c.model, c.t, c.q);
+    const double hub = c.model.omega * (h_after - h_before - (at.x() * r.impulse_y - at.y() * r.impulse_x));
+    EXPECT_NEAR(r.contact_work, -0.5 * (1 - e * e) * vn * vn / c.a_nn, 1e-12 * vn * vn / c.a_nn);
+    EXPECT_NEAR(e_after - e_before, hub + r.contact_work, 1e-10 * (std::abs(e_before) + std::abs(e_after)));
+  }
+}

@@ -33,6 +33,7 @@ struct ContactLoad {
   double normal_force = 0;    // reported F_n [N]
   double friction_force = 0;  // F_t on the tip along the tangent [N]
   double force_x = 0, force_y = 0;  // the surface's force on the tip, global frame [N]
+  double moment = 0;          // its moment about the hub axis, X_t F_Y − Y_t F_X [N m]
   double power = 0;           // q̇ᵀQ_contact [W], the rate of change of the Jacobi integral
   double slip_power = 0;      // F_t V_t [W] (≤ 0)
   double slip = 0;            // slip direction s_t used

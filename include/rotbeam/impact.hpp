@@ -13,6 +13,9 @@ class Surface;
 
 enum class RestitutionModel { yigit, constant };
 enum class RestitutionSpeed { normal, full };
+/// Friction during the impact: none (the thesis: the impulse is normal) or Coulomb's law with
+/// Stronge's energetic coefficient of restitution (SPEC §11).
+enum class ImpactFriction { none, coulomb };
 
 /// How e is chosen at an impact.
 struct ImpactLaw {
@@ -24,6 +27,7 @@ struct ImpactLaw {
   // sustained contact (see docs/configuration.md).
   double plastic_below_m_s = 0.063;
   RestitutionSpeed speed = RestitutionSpeed::normal;  // `full`: Appendix B jump.m (|V_tip|)
+  ImpactFriction friction = ImpactFriction::none;     // impact.friction
 };
 
 /// e for an impact with normal approach speed v_n = |Ċ⁻| and full tip speed |V| [m/s]:
@@ -39,6 +43,10 @@ struct ImpactResult {
   double effective_inverse_mass = 0;   // a = ∇CᵀM⁻¹∇C [1/kg]
   double relative_energy_loss = 0;     // ½(1 − e²)(Ċ⁻)²/a [J], the drop of T_rel
   double delta_t2 = 0;                 // change of ½q̇ᵀMq̇ [J] = −loss − P ∂C/∂t
+  double tangential_impulse = 0;       // P_t along the tangent (Coulomb impacts; |P_t| ≤ μ|P|) [N s]
+  double impulse_x = 0, impulse_y = 0; // the impulse on the tip, global frame [N s]
+  bool jammed = false;                 // a frictional impact whose normal approach never ends (impact Painlevé)
+  double contact_work = 0;             // work of the contact impulse on the tip, −(the energy the impact dissipates) [J]
 };
 
 /// Whether the tip leaves the surface after the impact. The law makes Ċ⁺ = −e Ċ⁻ exactly, so it
@@ -47,9 +55,18 @@ struct ImpactResult {
 inline bool rebounds(const ImpactResult& r) { return r.restitution > 1e-12; }
 
 /// Applies the impact law at (t, q) to qd in place. Requires an approaching tip (Ċ⁻ > 0);
-/// throws std::domain_error otherwise (a receding tip has no impact, SPEC §5).
+/// throws std::domain_error otherwise (a receding tip has no impact, SPEC §5). `mu` is Coulomb's
+/// coefficient during the impact, used when law.friction is `coulomb`.
+///
+/// Frictionless (the thesis): q̇⁺ = q̇⁻ + P M⁻¹∇C, P = −(1 + e)Ċ⁻/a. Coulomb (SPEC §11, Stronge
+/// 2000, ch. 5): the normal impulse p = −P grows from 0; with a_nn = ∇CᵀM⁻¹∇C, a_nt = ∇CᵀM⁻¹g_t,
+/// a_tt = g_tᵀM⁻¹g_t (g_t = ∂V_t/∂q̇) the normal and slip velocities are piecewise linear in p:
+/// sliding with s = sign(V_t), dP_t = −μ s dp; when V_t reaches 0 the tip sticks (dP_t = a_nt/a_tt dp)
+/// if |a_nt| ≤ μ a_tt, else slides back, s = −sign(a_nt). Compression ends at Ċ = 0; restitution ends
+/// when the normal impulse's work in it is −e² times its work in compression (e is the law's,
+/// as an energetic coefficient), so no impact creates energy and |P_t| ≤ μ p.
 ImpactResult apply_impact(const BeamModel& beam, const Surface& surface, const ImpactLaw& law, double t,
                           const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Ref<Eigen::VectorXd> qd,
-                          BeamWorkspace& ws, TipKinematics& tip);
+                          BeamWorkspace& ws, TipKinematics& tip, double mu = 0.0);
 
 }  // namespace rotbeam

@@ -36,6 +36,7 @@ struct PassEvent {
   double t = 0, theta = 0, y_tip = 0;
   EventKind kind = EventKind::end;
   double vx_before = NAN, vx_after = NAN, restitution = NAN, impulse = NAN;
+  double hub_work = NAN;  // impacts: the work the hub does during the impact [J]
   std::string detail;
 };
 
@@ -54,6 +55,12 @@ struct PassSummary {
   double mean_normal_force_n = 0;
   double normal_impulse_n_s = 0;
   double friction_work_j = 0;
+  // The energy ledger in the inertial frame (SPEC §7, §11), works signed as energy given to the
+  // filament: hub_work_j + friction_work_j + impact_loss_j = energy_change_j.
+  double hub_work_j = 0;            // ω ∫τ dt including the impulsive part, from the angular-momentum balance [J]
+  double hub_impulsive_work_j = 0;  // the hub's work during the impacts (the constraint moves) [J]
+  double impact_loss_j = 0;         // the contact impulses' work on the tip, −(energy the impacts dissipate) ≤ 0 [J]
+  double energy_change_j = 0;       // E = T + U at the end less at the start [J]
   double max_tip_deflection_ratio = 0;
   double energy_audit_residual = 0;
   long steps = 0;

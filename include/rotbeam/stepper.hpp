@@ -40,11 +40,13 @@ struct FilamentState {
   double slip = 0;         // s_t ∈ {−1, 0, +1}: the friction acts against it (contact only)
 };
 
-/// Contact integrals over a step (zero in free flight).
+/// Contact integrals over a step and its largest normal force (zero in free flight).
 struct StepIntegrals {
-  double work = 0;            // ∫ q̇ᵀQ_contact dt [J]
-  double friction_work = 0;   // ∫ F_t V_t dt [J]
-  double normal_impulse = 0;  // ∫ F_n dt [N s]
+  double work = 0;               // ∫ q̇ᵀQ_contact dt [J]
+  double friction_work = 0;      // ∫ F_t V_t dt [J]
+  double normal_impulse = 0;     // ∫ F_n dt [N s]
+  double contact_moment = 0;     // ∫ (X_t F_Y − Y_t F_X) dt, the contact force's angular impulse about the hub [N m s]
+  double peak_normal_force = 0;  // the largest F_n over the step, its interior included [N]
 };
 
 enum class Root { none, gap_closes, multiplier_vanishes, slip_stops };

@@ -69,6 +69,15 @@ def draw_surface(ax, surface, y_mm, **style):
     ax.plot(y, -surface_x(surface, y * 1e-3) * 1e3, **style)
 
 
+def warning_line(summary):
+    """The run's warnings as a line for a title (empty without warnings)."""
+    warnings = summary.get("warnings", [])
+    if not warnings:
+        return ""
+    return "\nwarning: " + "; ".join(warnings) if len(warnings) == 1 else \
+        f"\n{len(warnings)} warnings: " + "; ".join(w.split(":")[0] for w in warnings)
+
+
 def _impacts(events):
     return [i for i, k in enumerate(events["kind"]) if k == "impact"]
 
@@ -150,7 +159,8 @@ def plot_run(folder, out):
     axes[1, 1].set_ylim(min(-5, np.nanmin(h["gap_m"]) * 1e3), 0.5)
     axes[1, 1].grid(alpha=0.3)
     axes[1, 1].set_title("gap against the hub angle", fontsize=9)
-    fig.suptitle(f"Tip path — {title}", fontsize=10)
+    fig.suptitle(f"Tip path — {title}" + warning_line(summary), fontsize=10,
+                 color="C3" if summary.get("warnings") else "k")
     fig.tight_layout()
     written.append(out / "tip_path.png")
     fig.savefig(written[-1], dpi=120)

@@ -32,6 +32,7 @@ ContactLoad contact_load(const FrictionModel& friction, const TipKinematics& tip
   generalized_force = lambda * tip.grad_gap + l.friction_force * tip.grad_tangent;
   l.force_x = lambda * tip.normal_x + l.friction_force * tip.tangent_x;
   l.force_y = lambda * tip.normal_y + l.friction_force * tip.tangent_y;
+  l.moment = tip.X * l.force_y - tip.Y * l.force_x;
   l.power = qd.dot(generalized_force);
   l.slip_power = l.friction_force * tip.slip_speed;
   return l;

@@ -1,21 +1,26 @@
 // The adaptive event-driven scheme as a stepper (SPEC §6): Dormand–Prince 5(4) with dense output
 // from Boost.Odeint, roots located on the dense output, projection onto the constraint in contact.
 //
-// State x = (q, q̇, W, W_f, I_n): W = ∫q̇ᵀQ dt, W_f = ∫F_t V_t dt, I_n = ∫F_n dt are integrated with
-// the motion (under the same error control) and reset after every accepted contact step, so the
-// energy audit and the contact integrals are as accurate as the tolerance.
+// State x = (q, q̇, W, W_f, I_n, I_m): W = ∫q̇ᵀQ dt, W_f = ∫F_t V_t dt, I_n = ∫F_n dt and the contact
+// force's angular impulse I_m = ∫(X_t F_Y − Y_t F_X) dt are integrated with the motion (under the
+// same error control) and reset after every accepted contact step, so the energy audit and the
+// contact integrals are as accurate as the tolerance.
 //   free flight  q̈ = −M⁻¹Ψ; root C = 0 (upward)
 //   contact      q̈ = M⁻¹(−Ψ + λ∇C + |λ|Q*) with λ from a λ + b|λ| = c at every evaluation;
 //                roots λ = 0 (upward) and s_t V_t = 0 (downward); before each step q and q̇ are
 //                projected (mass-weighted) onto C = 0 and Ċ = 0, and again at its end
 // Each step's dense output is sampled at interior points before root finding (TOMS 748), so a
-// crossing and re-crossing within one step is still found.
+// crossing and re-crossing within one step is still found; the largest normal force inside a
+// contact step is found on the dense output too (Brent), and so is a whole rebound flight that fits
+// inside one step (the lowest gap of the step arms the impact detector).
 #include "rotbeam/rigid_contact.hpp"
 #include "rotbeam/stepper.hpp"
 #include "rotbeam/detail/diagnostics.hpp"
 
+#include <boost/math/tools/minima.hpp>
 #include <boost/math/tools/toms748_solve.hpp>
 #include <boost/numeric/odeint.hpp>
+#include <array>
 #include <cmath>
 #include <functional>
 
@@ -28,6 +33,8 @@ using State = std::vector<double>;
 using DenseStepper = odeint::result_of::make_dense_output<odeint::runge_kutta_dopri5<State>>::type;
 
 constexpr int kSamplesPerStep = 4;  // interior samples of the dense output per step
+constexpr int kIntegrals = 4;       // W, W_f, I_n, I_m after q and q̇ in the state
+constexpr int kBrentBits = 30;      // a maximum or minimum on the dense output to ~1e-9 of its bracket
 // An accepted step shorter than this fraction of the pass means the tolerance cannot be met in
 // double precision (at rtol ≥ 1e-13 the steps stay above ~1e-9 s for a pass of ~1e-2 s).
 constexpr double kMinStepFraction = 1e-12;
@@ -44,8 +51,8 @@ public:
         ews_(system.beam.make_workspace()),
         tip_(n_),
         etip_(n_),
-        x_(2 * n_ + 3, 0.0),
-        xs_(2 * n_ + 3, 0.0),
+        x_(2 * n_ + kIntegrals, 0.0),
+        xs_(2 * n_ + kIntegrals, 0.0),
         q_(n_),
         qd_(n_),
         qstar_(n_),
@@ -89,7 +96,7 @@ private:
       x_[i] = q_[i];
       x_[n_ + i] = qd_[i];
     }
-    x_[2 * n_] = x_[2 * n_ + 1] = x_[2 * n_ + 2] = 0.0;
+    for (int k = 0; k < kIntegrals; ++k) x_[2 * n_ + k] = 0.0;
   }
   void unpack(const State& x) {
     for (int i = 0; i < n_; ++i) {
@@ -97,7 +104,9 @@ private:
       qd_[i] = x[n_ + i];
     }
   }
-  StepIntegrals integrals_of(const State& x) const { return {x[2 * n_], x[2 * n_ + 1], x[2 * n_ + 2]}; }
+  StepIntegrals integrals_of(const State& x) const {
+    return {x[2 * n_], x[2 * n_ + 1], x[2 * n_ + 2], x[2 * n_ + 3], 0.0};
+  }
   void store(FilamentState& s) const {
     s.t = t_;
     s.q = q_;
@@ -112,7 +121,7 @@ private:
     dq = qd;
     if (phase_ == Phase::free) {
       acceleration(sys_.beam, q, qd, nullptr, *ws_, a);
-      dxdt[2 * n_] = dxdt[2 * n_ + 1] = dxdt[2 * n_ + 2] = 0.0;
+      for (int k = 0; k < kIntegrals; ++k) dxdt[2 * n_ + k] = 0.0;
       return;
     }
     const AccelerationMultiplier am =
@@ -130,6 +139,7 @@ private:
     dxdt[2 * n_] = load.power;
     dxdt[2 * n_ + 1] = load.slip_power;
     dxdt[2 * n_ + 2] = load.normal_force;
+    dxdt[2 * n_ + 3] = load.moment;
   }
 
   // ---- root functions on the dense output ---------------------------------------------------
@@ -141,6 +151,10 @@ private:
     const Eigen::Map<const Eigen::VectorXd> q(x.data(), n_), qd(x.data() + n_, n_);
     return acceleration_multiplier(sys_.beam, sys_.surface, sys_.law.friction, t, q, qd, slip_, *ews_, etip_)
         .solution.lambda;
+  }
+  // The reported normal force for the multiplier just computed by state_lambda (etip_ at its state).
+  double normal_force_of(double lambda) const {
+    return reported_normal_force(sys_.law.friction, etip_, std::min(lambda, 0.0));
   }
   double state_slip_speed(double t, const State& x) {
     const Eigen::Map<const Eigen::VectorXd> q(x.data(), n_), qd(x.data() + n_, n_);
@@ -226,12 +240,15 @@ private:
     double ta = 0, tb = 0;
     if (!advance(t_stop, ta, tb, out)) return out;
     const double te = std::min(tb, t_stop);
-    const double offset = offset_;
-    auto g = [&](double t) {
+    auto gap_at = [&](double t) {
       stepper_.calc_state(t, xs_);
-      return state_gap(t, xs_) - offset;
+      return state_gap(t, xs_);
     };
-    const double root = first_root(g, ta, te, std::min(g_prev_, -1e-300));
+    double t_from = ta, g_from = g_prev_;
+    if (!armed_) arm_within(gap_at, ta, te, t_from, g_from);
+    const double offset = offset_;
+    auto g = [&](double t) { return gap_at(t) - offset; };
+    const double root = first_root(g, t_from, te, std::min(g_from, -1e-300));
     if (!std::isnan(root)) {
       stepper_.calc_state(root, xs_);
       unpack(xs_);
@@ -252,6 +269,36 @@ private:
     return out;
   }
 
+  // Before the tip has been clear of the surface by ε, a whole rebound flight can fit inside one
+  // step. The lowest gap of the step on the dense output decides: below −ε the detector arms there
+  // (t_from, g_from) and the return to C = 0 after it is the next impact; otherwise a root counts
+  // only beyond +ε (see begin_free).
+  template <class GapAt>
+  void arm_within(GapAt& gap_at, double ta, double te, double& t_from, double& g_from) {
+    double c_low = INFINITY, t_left = ta, t_right = te;
+    double t_prev = ta;
+    for (int k = 1; k <= kSamplesPerStep; ++k) {
+      const double tk = ta + (te - ta) * k / kSamplesPerStep;
+      const double ck = gap_at(tk);
+      if (ck < -eps_) {  // clear of the surface at this sample: arm here
+        arm_at(tk, ck, t_from, g_from);
+        return;
+      }
+      if (ck < c_low) c_low = ck, t_left = t_prev, t_right = std::min(tk + (te - ta) / kSamplesPerStep, te);
+      t_prev = tk;
+    }
+    boost::uintmax_t iters = 100;
+    const auto low = boost::math::tools::brent_find_minima(gap_at, t_left, t_right, kBrentBits, iters);
+    if (low.second < -eps_) arm_at(low.first, low.second, t_from, g_from);
+  }
+
+  void arm_at(double t, double c, double& t_from, double& g_from) {
+    armed_ = true;
+    offset_ = 0.0;
+    t_from = t;
+    g_from = c;
+  }
+
   StepOutcome contact_step(FilamentState& s, double t_stop) {
     const FrictionModel& friction = sys_.law.friction;
     StepOutcome out;
@@ -264,6 +311,7 @@ private:
     reinitialize();
     painleve_ = false;
     const double lambda0 = std::min(state_lambda(t_, x_), 0.0);
+    load_start_ = normal_force_of(lambda0);
     const double slip0 = state_slip_speed(t_, x_);
     double ta = 0, tb = 0;
     if (!advance(t_stop, ta, tb, out)) return out;
@@ -273,7 +321,8 @@ private:
       return out;
     }
     const double te = std::min(tb, t_stop);
-    // Separation: λ crosses 0 upward. Slip stop: s·V_t crosses 0 downward.
+    // Separation: λ crosses 0 upward. Slip stop: s·V_t crosses 0 downward. λ is sampled at interior
+    // points once, for the separation root and for the step's largest normal force.
     auto g_lambda = [&](double t) {
       stepper_.calc_state(t, xs_);
       return state_lambda(t, xs_);
@@ -282,12 +331,34 @@ private:
       stepper_.calc_state(t, xs_);
       return -state_slip_speed(t, xs_);
     };
-    const double t_sep = lambda0 < 0.0 ? first_root(g_lambda, ta, te, lambda0) : NAN;
+    std::array<double, kSamplesPerStep + 1> ts{}, fn{};
+    ts[0] = ta;
+    fn[0] = load_start_;
+    int sampled = 0;
+    double t_sep = NAN;
+    if (lambda0 < 0.0) {
+      double l_prev = lambda0;
+      for (int k = 1; k <= kSamplesPerStep; ++k) {
+        ts[k] = ta + (te - ta) * k / kSamplesPerStep;
+        const double lk = g_lambda(ts[k]);
+        fn[k] = normal_force_of(lk);
+        sampled = k;
+        if (l_prev < 0.0 && lk >= 0.0) {
+          boost::uintmax_t iters = 200;
+          const double tol_s = opt_.event_tolerance_s;
+          const auto tol = [tol_s](double a, double b) { return std::abs(b - a) <= tol_s; };
+          t_sep = boost::math::tools::toms748_solve(g_lambda, ts[k - 1], ts[k], l_prev, lk, tol, iters).second;
+          break;
+        }
+        l_prev = lk;
+      }
+    }
     const double t_slip = slip0 > 0.0 ? first_root(g_slip, ta, te, -slip0) : NAN;
     double t_event = te;
     Root root = Root::none;
     if (!std::isnan(t_sep)) t_event = t_sep, root = Root::multiplier_vanishes;
     if (!std::isnan(t_slip) && t_slip < t_event) t_event = t_slip, root = Root::slip_stops;
+    const double peak = step_peak(ts, fn, sampled, t_event, g_lambda);
     if (t_event < tb || root != Root::none) stepper_.calc_state(t_event, xs_);
     const State& xe = (t_event < tb || root != Root::none) ? xs_ : stepper_.current_state();
     unpack(xe);
@@ -302,11 +373,34 @@ private:
     store(s);
     out.root = root;
     out.status = root == Root::none ? StepStatus::advanced : StepStatus::root;
+    out.integrals.peak_normal_force = peak;
     if (root == Root::multiplier_vanishes) return out;
     const AccelerationMultiplier am =
         acceleration_multiplier(sys_.beam, sys_.surface, friction, t_, q_, qd_, slip_, *ws_, tip_);
     out.load = contact_load(friction, tip_, qd_, std::min(am.solution.lambda, 0.0), slip_, force_);
+    out.integrals.peak_normal_force = std::max(peak, out.load.normal_force);
     return out;
+  }
+
+  // The largest normal force of a contact step: the sampled values on [ta, t_event) and, where the
+  // largest sample is inside that range, Brent's maximisation on the dense output between its
+  // neighbours (a maximum inside a step is not lost to the step ends).
+  template <class Lambda>
+  double step_peak(const std::array<double, kSamplesPerStep + 1>& ts, const std::array<double, kSamplesPerStep + 1>& fn,
+                   int sampled, double t_event, Lambda& g_lambda) {
+    int best = 0;
+    int last = 0;  // the last sample before the step's end event
+    for (int k = 0; k <= sampled && ts[k] < t_event; ++k) {
+      last = k;
+      if (fn[k] > fn[best]) best = k;
+    }
+    double peak = fn[best];
+    if (best == 0 || sampled == 0) return peak;
+    const double lo = ts[best - 1], hi = best < last ? ts[best + 1] : t_event;
+    auto minus_fn = [&](double t) { return -normal_force_of(g_lambda(t)); };
+    boost::uintmax_t iters = 100;
+    const auto found = boost::math::tools::brent_find_minima(minus_fn, lo, hi, kBrentBits, iters);
+    return std::max(peak, -found.second);
   }
 
   const System sys_;
@@ -320,6 +414,7 @@ private:
   StepperStatistics stats_;
   Phase phase_ = Phase::free;
   double t_ = 0, dt_ = 1e-7, slip_ = 0;
+  double load_start_ = 0;  // F_n at the (projected) start of the current contact step [N]
   // The free-flight gap detector (see begin_free).
   double eps_ = 0, offset_ = 0, g_prev_ = 0;
   bool armed_ = false;

@@ -154,6 +154,11 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
          }
        }},
       {"impact.restitution_cap", [](Parsed& p, auto& k, auto& n) { p.config.contact.impact.cap = number_in(k, n, 0.0, 1.0, false, false); }},
+      {"impact.friction",
+       [](Parsed& p, auto& k, auto& n) {
+         p.config.contact.impact.friction =
+             one_of(k, n, {"none", "coulomb"}) == "coulomb" ? ImpactFriction::coulomb : ImpactFriction::none;
+       }},
       {"impact.plastic_below_m_s", [](Parsed& p, auto& k, auto& n) { p.config.contact.impact.plastic_below_m_s = number_in(k, n, 0.0, INFINITY, false, true); }},
       {"initial.start",
        [](Parsed& p, auto& k, auto& n) {
@@ -340,7 +345,9 @@ nlohmann::json Config::to_json() const {
                {"modes", beam.modes}};
   j["hub"] = {{"radius_m", beam.hub_radius_m}, {"speed_rpm", beam.speed_rpm}};
   j["surface"] = {{"depth_fraction", surface.depth_fraction}, {"friction", contact.friction.mu}};
-  j["impact"] = {{"restitution_cap", impact.cap}, {"plastic_below_m_s", impact.plastic_below_m_s}};
+  j["impact"] = {{"restitution_cap", impact.cap},
+                 {"plastic_below_m_s", impact.plastic_below_m_s},
+                 {"friction", impact.friction == ImpactFriction::coulomb ? "coulomb" : "none"}};
   if (impact.model == RestitutionModel::yigit)
     j["impact"]["restitution"] = "yigit";
   else

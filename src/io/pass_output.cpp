@@ -44,7 +44,7 @@ std::string history_header(int n) {
 }
 
 std::string events_header() {
-  return "t_s,theta_deg,kind,y_tip_m,vx_before_m_s,vx_after_m_s,restitution,impulse_n_s,detail";
+  return "t_s,theta_deg,kind,y_tip_m,vx_before_m_s,vx_after_m_s,restitution,impulse_n_s,hub_work_j,detail";
 }
 
 void append_history_line(std::string& out, const HistoryRow& r) {
@@ -78,7 +78,7 @@ void append_event_line(std::string& out, const PassEvent& e) {
   put(out, e.theta * 180.0 / M_PI);
   out += ',';
   out += event_name(e.kind);
-  for (double v : {e.y_tip, e.vx_before, e.vx_after, e.restitution, e.impulse}) {
+  for (double v : {e.y_tip, e.vx_before, e.vx_after, e.restitution, e.impulse, e.hub_work}) {
     out += ',';
     if (!std::isnan(v)) put(out, v);  // empty: not defined for this kind of event
   }
@@ -112,6 +112,10 @@ nlohmann::json summary_json(const PassResult& result, const Config& config, cons
   j["mean_normal_force_n"] = s.mean_normal_force_n;
   j["normal_impulse_n_s"] = s.normal_impulse_n_s;
   j["friction_work_j"] = s.friction_work_j;
+  j["hub_work_j"] = s.hub_work_j;
+  j["hub_impulsive_work_j"] = s.hub_impulsive_work_j;
+  j["impact_loss_j"] = s.impact_loss_j;
+  j["energy_change_j"] = s.energy_change_j;
   j["max_tip_deflection_ratio"] = s.max_tip_deflection_ratio;
   j["energy_audit_residual"] = s.energy_audit_residual;
   j["steps"] = s.steps;

@@ -52,7 +52,9 @@ FirstImpactResult first_impact(const System& system, const InitialConditions& in
   r.qd_after = s.qd;
   const std::unique_ptr<BeamWorkspace> ws = beam.make_workspace();
   TipKinematics tip(n);
-  r.impact = apply_impact(beam, system.surface, system.law.impact, r.t, r.q, r.qd_after, *ws, tip);
+  r.impact = apply_impact(beam, system.surface, system.law.impact, r.t, r.q, r.qd_after, *ws, tip,
+                          system.law.friction.mu);
+  if (r.impact.jammed) throw std::domain_error("the frictional impact jams (Painlevé's paradox of impacts)");
   r.x_tip = tip.X;
   r.y_tip = tip.Y;
   return r;

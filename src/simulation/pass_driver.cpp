@@ -24,7 +24,8 @@ PassDriver::PassDriver(const System& system, const PassOptions& options, Stepper
       ws_(system.beam.make_workspace()),
       tip_(system.beam.modes()),
       state_(system.beam.modes()),
-      qd_before_(system.beam.modes()) {
+      qd_before_(system.beam.modes()),
+      force_(system.beam.modes()) {
   t_end_ = system.beam.time_at(options.end_angle_deg * M_PI / 180.0);
 }
 
@@ -111,8 +112,13 @@ void PassDriver::touch() {
 void PassDriver::impact() {
   if (rec_.impacts_exhausted(state_.t)) return finish(Phase::free);
   qd_before_ = state_.qd;
-  const ImpactResult r =
-      apply_impact(system_.beam, system_.surface, system_.law.impact, state_.t, state_.q, state_.qd, *ws_, tip_);
+  const ImpactResult r = apply_impact(system_.beam, system_.surface, system_.law.impact, state_.t, state_.q, state_.qd,
+                                      *ws_, tip_, system_.law.friction.mu);
+  if (r.jammed)
+    return fail(FailureKind::painleve, state_.t,
+                "the frictional impact jams: sliding drives the tip into the surface and the normal approach never "
+                "ends (Painlevé's paradox of impacts; impact.friction = \"none\" keeps the thesis's frictionless impact)",
+                Phase::free);
   rec_.impact(state_.t, state_.q, qd_before_, state_.qd, r);
   if (rebounds(r)) {
     state_.phase = Phase::free;
@@ -146,7 +152,8 @@ void PassDriver::begin_contact(const std::string& why) {
     ++instant_transitions_;
     return separate();
   }
-  rec_.contact_start(state_.t, state_.q, why);
+  rec_.contact_start(state_.t, state_.q, state_.qd,
+                     contact_load(friction, tip_, state_.qd, std::min(am.solution.lambda, 0.0), state_.slip, force_), why);
   state_.phase = Phase::contact;
   stepper_.begin_contact(state_, am.solution.lambda);
 }

@@ -40,7 +40,7 @@ private:
   std::unique_ptr<BeamWorkspace> ws_;
   TipKinematics tip_;
   FilamentState state_;
-  Eigen::VectorXd qd_before_;
+  Eigen::VectorXd qd_before_, force_;
   double t_end_ = 0;
   bool done_ = false;
   int instant_transitions_ = 0;  // phase changes without time advancing (chatter guard)

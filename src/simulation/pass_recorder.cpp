@@ -6,6 +6,13 @@
 
 namespace rotbeam {
 
+namespace {
+constexpr double kReachLimit = 1.01;  // tip-to-clamp distance / L beyond which the geometry is impossible
+// Below this |y_t|/L the model's foreshortening stays close to the exact one (≈ 0.05 L at 0.3 L), so
+// the tip is within reach and the distance is not computed.
+constexpr double kReachCheckRatio = 0.3;
+}  // namespace
+
 const char* phase_name(Phase p) {
   switch (p) {
     case Phase::free: return "free";
@@ -81,6 +88,25 @@ void PassRecorder::track(double t, const Eigen::VectorXd& q) {
       << " of the length: the quadratic foreshortening model is at the edge of its validity (SPEC §10)";
     warn(t, q, s.str());
   }
+  // An inextensible filament's tip cannot be farther than L from its clamp at (r_h, 0); where the
+  // model puts it there, it has left its geometry (only possible at large deflection).
+  if (!geometry_warned_ && ratio > kReachCheckRatio) {
+    const Eigen::Vector2d r = system_.beam.tip_position(q);
+    const double L = system_.beam.beam_length();
+    const double reach = std::hypot(r.x() - (system_.beam.tip_radius() - L), r.y()) / L;
+    if (reach > kReachLimit) {
+      geometry_warned_ = true;
+      std::ostringstream s;
+      s.precision(3);
+      s << "the tip is " << reach << " L from its clamp, farther than a filament of length L can reach: the model "
+        << "has left its geometry and its results are not physical (SPEC §10)";
+      warn(t, q, s.str());
+      if (options_.deflection_limit_is_error && !validity_breached_) {
+        validity_breached_ = true;
+        validity_ratio_ = ratio;
+      }
+    }
+  }
 }
 
 void PassRecorder::sample(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Phase phase,
@@ -114,7 +140,10 @@ void PassRecorder::sample(double t, const Eigen::VectorXd& q, const Eigen::Vecto
 void PassRecorder::start(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
   next_sample_t_ = t;
   last_t_ = t;
-  h_start_ = system_.beam.energy(q, qd, *ws_).jacobi;
+  const EnergyTerms e = system_.beam.energy(q, qd, *ws_);
+  h_start_ = e.jacobi;
+  energy_start_ = e.kinetic + e.potential;
+  momentum_start_ = e.angular_momentum;
   energy_scale_ = std::abs(h_start_);
   track(t, q);
   sample(t, q, qd, Phase::free, ContactLoad{});
@@ -136,7 +165,8 @@ void PassRecorder::accept(double t, const Eigen::VectorXd& q, const Eigen::Vecto
     normal_time_integral_ += in.normal_impulse;
     s.friction_work_j += in.friction_work;
     work_ += in.work;
-    s.peak_normal_force_n = std::max(s.peak_normal_force_n, load.normal_force);
+    contact_moment_ += in.contact_moment;
+    s.peak_normal_force_n = std::max({s.peak_normal_force_n, load.normal_force, in.peak_normal_force});
   }
   last_t_ = t;
   track(t, q);
@@ -154,6 +184,16 @@ void PassRecorder::impact(double t, const Eigen::VectorXd& q, const Eigen::Vecto
   s.last_separation_deg = theta_deg;
   s.normal_impulse_n_s += std::abs(r.impulse);
   impact_jumps_ += r.delta_t2;
+  // The hub's work during the impact: ω times its angular impulse, ΔH_z less the moment of the contact
+  // impulse (q is unchanged, so ΔH_z = Δ(p(q)·q̇)).
+  const Eigen::Vector2d at = tip_position(system_.beam, t, q);
+  const double impulse_moment = at.x() * r.impulse_y - at.y() * r.impulse_x;
+  const double dh = system_.beam.energy(q, qd_after, *ws_).angular_momentum -
+                    system_.beam.energy(q, qd_before, *ws_).angular_momentum;
+  const double hub_work = system_.beam.hub_motion().omega * (dh - impulse_moment);
+  impulse_moment_ += impulse_moment;
+  s.hub_impulsive_work_j += hub_work;
+  s.impact_loss_j += r.contact_work;
   sample(t, q, qd_before, Phase::free, ContactLoad{});
   PassEvent e;
   e.t = t;
@@ -164,18 +204,24 @@ void PassRecorder::impact(double t, const Eigen::VectorXd& q, const Eigen::Vecto
   e.vx_after = r.vx_after;
   e.restitution = r.restitution;
   e.impulse = r.impulse;
+  e.hub_work = hub_work;
   e.detail = r.restitution == 0.0 ? "plastic" : "";
   emit(e);
   sample(t, q, qd_after, Phase::free, ContactLoad{});
   last_t_ = t;
 }
 
-void PassRecorder::contact_start(double t, const Eigen::VectorXd& q, const std::string& detail) {
+void PassRecorder::contact_start(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                                 const ContactLoad& load, const std::string& detail) {
   in_episode_ = true;
   episode_t0_ = t;
   episode_theta0_ = system_.beam.theta(t);
   episode_y0_ = tip_y(t, q);
   event(EventKind::contact_start, t, q, detail);
+  // The force right after the plastic impact that opens an episode is often the episode's largest.
+  result_.summary.peak_normal_force_n = std::max(result_.summary.peak_normal_force_n, load.normal_force);
+  sample(t, q, qd, Phase::contact, load);
+  last_t_ = t;
 }
 
 void PassRecorder::contact_end(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
@@ -243,6 +289,10 @@ void PassRecorder::finish(double t, const Eigen::VectorXd& q, const Eigen::Vecto
   const EnergyTerms e = system_.beam.energy(q, qd, *ws_);
   energy_scale_ = std::max({energy_scale_, std::abs(e.jacobi), e.t2});
   s.energy_audit_residual = std::abs(e.jacobi - h_start_ - work_ - impact_jumps_) / energy_scale_;
+  // The hub's work from the angular-momentum balance: dH_z/dt = τ + (R × F)_z, with impulses at impacts.
+  s.hub_work_j = system_.beam.hub_motion().omega *
+                 (e.angular_momentum - momentum_start_ - contact_moment_ - impulse_moment_);
+  s.energy_change_j = e.kinetic + e.potential - energy_start_;
   event(EventKind::end, t, q, "");
 }
 

@@ -23,7 +23,9 @@ public:
               const StepIntegrals& integrals, bool force_sample = false);
   void impact(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd_before, const Eigen::VectorXd& qd_after,
               const ImpactResult& r);
-  void contact_start(double t, const Eigen::VectorXd& q, const std::string& detail);
+  /// Sustained contact begins with the contact load `load` (a history row is written).
+  void contact_start(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const ContactLoad& load,
+                     const std::string& detail);
   void contact_end(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const std::string& detail);
   void event(EventKind kind, double t, const Eigen::VectorXd& q, const std::string& detail);
   /// A warning: kept once in the summary and recorded as an event at t.
@@ -60,10 +62,14 @@ private:
   double last_t_ = 0;
   bool in_episode_ = false;
   double episode_t0_ = 0, episode_theta0_ = 0, episode_y0_ = 0;
-  // Energy audit.
+  // Energy audit (rotating frame) and the inertial ledger.
   double h_start_ = 0, work_ = 0, impact_jumps_ = 0, energy_scale_ = 0;
+  double energy_start_ = 0, momentum_start_ = 0;  // E = T + U and H_z at the start
+  double contact_moment_ = 0;                     // ∫ (X F_Y − Y F_X) dt over sustained contact [N m s]
+  double impulse_moment_ = 0;                     // Σ (X P_Y − Y P_X) over the impacts [N m s]
   double normal_time_integral_ = 0;
   bool deflection_warned_ = false;
+  bool geometry_warned_ = false;
   bool validity_breached_ = false;
   double validity_ratio_ = 0;
 };
