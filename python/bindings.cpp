@@ -9,8 +9,13 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <chrono>
+#include <exception>
+#include <future>
 #include <optional>
 #include <string>
+#include <thread>
+#include <utility>
 #include <vector>
 
 namespace py = pybind11;
@@ -22,8 +27,42 @@ py::object from_json(const nlohmann::json& j) {
   return py::module_::import("json").attr("loads")(j.dump());
 }
 
-Config load(const std::optional<std::string>& path, const std::vector<std::string>& overrides) {
-  return load_config(path, overrides);
+using Values = std::vector<std::pair<std::string, std::string>>;  // (dotted key, TOML value), never pasted
+
+Config load(const std::optional<std::string>& path, const Values& values) { return load_config_values(path, values); }
+
+// Runs `work(stop)` on a worker thread while the calling (Python) thread waits with the GIL released,
+// checking for signals every 50 ms: Ctrl-C requests a stop on the token, the pass ends at its next
+// step, and the KeyboardInterrupt is raised at once (the partial result is dropped).
+template <class Work>
+auto interruptible(Work&& work) -> decltype(work(std::declval<const StopToken&>())) {
+  using Result = decltype(work(std::declval<const StopToken&>()));
+  StopToken stop;
+  std::promise<Result> promise;
+  std::future<Result> future = promise.get_future();
+  std::thread worker([&] {
+    try {
+      promise.set_value(work(stop));
+    } catch (...) {
+      promise.set_exception(std::current_exception());
+    }
+  });
+  bool interrupted = false;
+  {
+    py::gil_scoped_release release;
+    while (future.wait_for(std::chrono::milliseconds(50)) != std::future_status::ready) {
+      py::gil_scoped_acquire acquire;
+      if (PyErr_CheckSignals() != 0) {
+        stop.request_stop();
+        interrupted = true;
+        break;
+      }
+    }
+    future.wait();
+  }
+  worker.join();
+  if (interrupted) throw py::error_already_set();
+  return future.get();
 }
 
 py::dict history_arrays(const PassResult& r, int n) {
@@ -77,36 +116,33 @@ py::list event_dicts(const PassResult& r) {
   return events;
 }
 
-py::tuple run(const std::optional<std::string>& path, const std::vector<std::string>& overrides) {
+py::tuple run(const std::optional<std::string>& path, const Values& overrides) {
   const Config config = load(path, overrides);
   const Case c = build_case(config);
-  PassResult result;
-  {
-    py::gil_scoped_release release;
-    result = run_case(c);
-  }
+  const PassResult result = interruptible([&](const StopToken& stop) { return run_case(c, {nullptr, &stop}); });
   const nlohmann::json summary = summary_json(result, config, *c.surface);
   return py::make_tuple(from_json(summary), history_arrays(result, config.beam.modes), event_dicts(result));
 }
 
-py::object impact(const std::optional<std::string>& path, const std::vector<std::string>& overrides) {
+py::object impact(const std::optional<std::string>& path, const Values& overrides) {
   const Config config = load(path, overrides);
-  FirstImpactResult r;
-  {
-    py::gil_scoped_release release;
-    r = run_first_impact(build_case(config));
-  }
+  const Case c = build_case(config);
+  const FirstImpactResult r = interruptible([&](const StopToken&) { return run_first_impact(c); });
+  if (r.failure)
+    throw std::runtime_error(std::string("numerical failure (") + failure_name(r.failure->kind) + ") at t = " +
+                             std::to_string(r.failure->t) + " s before the first impact: " + r.failure->message);
   if (!r.found) return py::none();
   return from_json(impact_json(r, config));
 }
 
-py::tuple modes(const std::optional<std::string>& path, const std::vector<std::string>& overrides,
-                const std::vector<double>& requested) {
+py::tuple modes(const std::optional<std::string>& path, const Values& overrides,
+                const std::optional<std::vector<double>>& requested) {
   const Config config = load(path, overrides);
-  const std::vector<double> speeds_rpm =
-      requested.empty() ? default_mode_speeds_rpm(config.beam.speed_rpm) : requested;
+  if (requested && requested->empty()) throw ConfigError("speeds_rpm: empty (give speeds, or None for the defaults)");
+  const std::vector<double> speeds_rpm = requested ? *requested : default_mode_speeds_rpm(config.beam.speed_rpm);
   for (double s : speeds_rpm)
-    if (!(s >= 0.0) || !std::isfinite(s)) throw ConfigError("speeds_rpm: " + std::to_string(s) + " must be >= 0");
+    if (!(s >= 0.0 && s <= 1e6))
+      throw ConfigError("speeds_rpm: " + std::to_string(s) + " must be in [0, 1000000] rpm");
   Eigen::MatrixXd f;
   {
     py::gil_scoped_release release;
@@ -139,6 +175,6 @@ PYBIND11_MODULE(_core, m) {
   m.def("impact", &impact, py::arg("path"), py::arg("overrides"),
         "The first impact as a dict (the fields of `rotbeam impact --json`), or None without impact.");
   m.def("modes", &modes, py::arg("path"), py::arg("overrides"), py::arg("speeds_rpm"),
-        "Natural frequencies: (speeds_rpm array, frequencies_hz 2-D array); [] means the default speeds.");
+        "Natural frequencies: (speeds_rpm array, frequencies_hz 2-D array); None means the default speeds.");
   m.def("config_keys", &config_keys, "Every configuration key, 'section.key'.");
 }

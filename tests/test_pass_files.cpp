@@ -109,3 +109,18 @@ TEST(PassFiles, MemoryStaysBoundedWhileManyRowsStream) {
 #endif
   fs::remove_all(dir);
 }
+
+TEST(PassFiles, OneRunAtATimeInAFolderAndLeftoversOfAKilledRunAreRemoved) {
+  // Two writers on one folder: the second stops at once (two runs into one -o could mix their files).
+  // A killed run's temporaries are removed by the next writer (it holds the lock, so they are stale).
+  const fs::path dir = fresh_dir("lock");
+  fs::create_directories(dir);
+  std::ofstream(dir / "history.csv.tmp.999999") << "partial\n";
+  {
+    PassFiles first(dir, 5);
+    EXPECT_FALSE(fs::exists(dir / "history.csv.tmp.999999"));
+    EXPECT_THROW(PassFiles(dir, 5), std::runtime_error);
+  }
+  PassFiles again(dir, 5);  // the lock went with the first writer
+  fs::remove_all(dir);
+}

@@ -140,7 +140,7 @@ TEST(Reliability, EveryNumericalFailureRowOfTheDocument) {
     EXPECT_GT(std::count(h.begin(), h.end(), '\n'), 2) << "the partial history is kept";
     fs::remove_all(out);
   }
-  EXPECT_EQ(count, 5);
+  EXPECT_EQ(count, 7);  // the rows of the table (stick and non_finite added)
 }
 
 TEST(Reliability, StickIsDiagnosedByTheLockedTipAnalysis) {
@@ -202,5 +202,94 @@ TEST(Reliability, InterruptKeepsACompleteRecord) {
   EXPECT_LT(j["failure"]["theta_deg"].get<double>(), 90.0);
   for (const auto& entry : fs::directory_iterator(out))
     EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+  fs::remove_all(out);
+}
+
+TEST(Reliability, AStepThatCannotAdvanceIsAnUnderflow) {
+  // A free step of 1e-300 s cannot advance t ≈ 0.0248 s (t + h == t): before, the pass stayed at the
+  // same t for ever. The configuration's ranges keep the command line from it; the library stops
+  // with `step_underflow` instead of hanging, in the pass and in the first impact.
+  BeamParameters p;
+  const ForeshorteningBeam model = make_beam(p);
+  const Plane plane = plane_at_depth(model, 0.02);
+  PassOptions opt;
+  opt.scheme = Scheme::thesis;
+  opt.free_step_s = 1e-300;
+  const PassResult r = run_pass({model, plane, {}}, InitialConditions{}, opt);
+  ASSERT_TRUE(r.failure);
+  EXPECT_EQ(r.failure->kind, FailureKind::step_underflow);
+  EXPECT_NE(r.failure->message.find("would need over 1e12 steps"), std::string::npos) << r.failure->message;
+  InitialConditions flexible;
+  flexible.rigid_start = false;
+  flexible.q0 = Eigen::VectorXd::Zero(5);
+  flexible.qd0 = Eigen::VectorXd::Zero(5);
+  flexible.qd0[0] = 0.1;
+  const PassResult f = run_pass({model, plane, {}}, flexible, [&] {
+    PassOptions o = opt;
+    return o;
+  }());
+  ASSERT_TRUE(f.failure);
+  EXPECT_EQ(f.failure->kind, FailureKind::step_underflow);
+}
+
+TEST(Reliability, ManyJobsNeitherAbortNorIdle) {
+  // --jobs 40000 for a two-case sweep, and 100000 for converge, ended in `terminate` (exit 134) after
+  // every case ran; the runner now starts no more threads than there are jobs.
+  const std::string out = fresh_dir("jobs");
+  Outcome o = run("sweep --set hub.speed_rpm=3000 --vary surface.friction=0.1,0.2 --jobs 40000 -o OUT", out);
+  EXPECT_EQ(o.status, 0) << o.err;
+  EXPECT_TRUE(fs::exists(out + "/sweep.csv"));
+  fs::remove_all(out);
+  o = run("converge --jobs 100000 --rtols 1e-8 --steps 1e-6 --modes 3 --set simulation.end_angle_deg=-5", out);
+  EXPECT_EQ(o.status, 0) << o.err;
+}
+
+TEST(Reliability, ASweepCaseThatCannotBeWrittenFailsTheSweep) {
+  // A file where a case's folder should be: that case is `error` and the sweep exits 1 (it exited 0).
+  const std::string out = fresh_dir("sweep_error");
+  fs::create_directories(out);
+  std::ofstream(out + "/case-0002") << "not a folder\n";
+  const Outcome o = run("sweep --set hub.speed_rpm=3000 --vary surface.friction=0.1,0.2 -o OUT", out);
+  EXPECT_EQ(o.status, 1) << o.err;
+  EXPECT_NE(o.err.find("could not be run or written"), std::string::npos) << o.err;
+  std::ifstream csv(out + "/sweep.csv");
+  const std::string table((std::istreambuf_iterator<char>(csv)), {});
+  EXPECT_NE(table.find(",error,"), std::string::npos) << table;
+  fs::remove_all(out);
+}
+
+TEST(Reliability, ResumeChecksEveryFileOfACase) {
+  // A finished case whose history.csv was truncated, or whose events.csv was deleted, is run again
+  // (summary.json records the files' sizes), not marked `resumed`.
+  const std::string out = fresh_dir("resume");
+  ASSERT_EQ(run("sweep --set hub.speed_rpm=3000 --vary surface.friction=0.1,0.2,0.3 -o OUT", out).status, 0);
+  fs::resize_file(out + "/case-0001/history.csv", 100);
+  fs::remove(out + "/case-0002/events.csv");
+  ASSERT_EQ(run("sweep --set hub.speed_rpm=3000 --vary surface.friction=0.1,0.2,0.3 -o OUT", out).status, 0);
+  std::ifstream csv(out + "/sweep.csv");
+  std::string line, table;
+  int resumed = 0, done = 0;
+  while (std::getline(csv, line)) {
+    resumed += line.find(",resumed,") != std::string::npos;
+    done += line.find(",done,") != std::string::npos;
+  }
+  EXPECT_EQ(done, 2);
+  EXPECT_EQ(resumed, 1);
+  fs::remove_all(out);
+}
+
+TEST(Reliability, ModesPlotLeavesTheUsersFilesAlone) {
+  // `modes --plot X.png` used X.png.csv as its scratch table and deleted it: a user's file.
+  const std::string out = fresh_dir("modes_plot");
+  fs::create_directories(out);
+  std::ofstream(out + "/camp.png.csv") << "mine\n";
+  const Outcome o = run("modes --speeds-rpm 0:3000:4 --plot " + out + "/camp.png", out + "_x");
+  if (o.status == 0) {
+    EXPECT_TRUE(fs::exists(out + "/camp.png"));
+  }
+  std::ifstream kept(out + "/camp.png.csv");
+  std::string s;
+  std::getline(kept, s);
+  EXPECT_EQ(s, "mine");
   fs::remove_all(out);
 }

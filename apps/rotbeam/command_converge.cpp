@@ -37,6 +37,17 @@ std::vector<T> parse_list(const std::string& text, const std::string& option) {
   return out;
 }
 
+// A ladder value must be one the configuration accepts for the key it sets (one definition of the ranges).
+void check_as_key(const std::string& option, const std::string& text, const std::string& key, double value) {
+  char literal[64];
+  std::snprintf(literal, sizeof literal, "%.17g", value);
+  try {
+    load_config_values(std::nullopt, {{key, literal}});
+  } catch (const ConfigError& e) {
+    throw ConfigError(option + " " + text + ": " + e.what());
+  }
+}
+
 std::string cell(double v, int width, const char* format) {
   char buf[64];
   if (!std::isfinite(v)) std::snprintf(buf, sizeof buf, "%*s", width, "–");
@@ -50,6 +61,12 @@ int run_converge(const ConvergeOptions& o) {
   if (!o.rtols.empty()) ladder.rtols = parse_list<double>(o.rtols, "--rtols");
   if (!o.steps.empty()) ladder.thesis_free_steps = parse_list<double>(o.steps, "--steps");
   if (!o.modes.empty()) ladder.modes = parse_list<int>(o.modes, "--modes");
+  for (double r : ladder.rtols) check_as_key("--rtols", o.rtols, "simulation.rtol", r);
+  for (double h : ladder.thesis_free_steps) {  // contact step h/10, fine step h/100
+    check_as_key("--steps", o.steps, "simulation.free_step_s", h);
+    check_as_key("--steps", o.steps, "simulation.contact_step_s", h / 10);
+    check_as_key("--steps", o.steps, "simulation.fine_contact_step_s", h / 100);
+  }
   if (o.jobs < 0) throw ConfigError("--jobs " + std::to_string(o.jobs) + ": must be >= 0");
   install_interrupt_handlers();
   const ConvergenceStudy study = run_convergence(config, ladder, o.jobs, &interrupt_token());

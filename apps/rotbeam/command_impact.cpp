@@ -20,6 +20,12 @@ struct ImpactOptions {
 int run_impact(const ImpactOptions& o) {
   const Config config = o.case_options.load();
   const FirstImpactResult r = run_first_impact(build_case(config));
+  if (r.failure) {
+    print_error("numerical failure (" + std::string(failure_name(r.failure->kind)) + ") at t = " +
+                number_text(r.failure->t) + " s, θ = " + number_text(r.failure->theta * 180.0 / M_PI) +
+                " deg before the first impact: " + r.failure->message);
+    return exit_code_for_failure(r.failure->kind);
+  }
   if (!r.found) {
     print_error("no impact: the tip stays clear of the surface up to the end angle " +
                 fixed(config.simulation.end_angle_deg, 3) + " deg (closest gap " + std::to_string(r.min_gap) + " m)");

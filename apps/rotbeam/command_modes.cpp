@@ -35,7 +35,7 @@ std::vector<double> parse_speeds(const std::string& text) {
   auto number = [&](const std::string& s) {
     double v = 0;
     if (!detail::parse_finite_number(s, v)) throw ConfigError(what + "'" + s + "' is not a number");
-    if (v < 0) throw ConfigError(what + "speeds must be >= 0 rpm");
+    if (v < 0 || v > 1e6) throw ConfigError(what + "speeds must be in [0, 1000000] rpm");
     return v;
   };
   if (parts.size() == 1) return {number(parts[0])};
@@ -67,8 +67,11 @@ int run_modes(const ModesOptions& o) {
   const Eigen::MatrixXd f = frequencies_versus_speed(config.beam, speeds);
   const int n = config.beam.modes;
 
+  // The plot reads the table from a CSV file: the user's --csv, else a scratch file of our own in the
+  // system's temporary folder (never a path beside the user's that might be theirs).
   std::string csv_path = o.csv_path;
-  if (!o.plot_path.empty() && csv_path.empty()) csv_path = o.plot_path + ".csv";
+  ScratchFile scratch;
+  if (!o.plot_path.empty() && csv_path.empty()) csv_path = scratch.create("rotbeam-modes", ".csv");
   if (!csv_path.empty()) {
     std::ostringstream csv;
     csv.precision(12);
@@ -84,7 +87,6 @@ int run_modes(const ModesOptions& o) {
   }
   if (!o.plot_path.empty()) {
     const int code = run_python_plots({csv_path, "--campbell", o.plot_path});
-    if (o.csv_path.empty()) std::filesystem::remove(csv_path);
     if (code != 0) return code;
   }
   if (o.json) {

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 
 namespace rotbeam::cli {
 
@@ -17,6 +18,7 @@ struct RunOptions {
   CaseOptions case_options;
   std::string output_dir;
   bool json = false;
+  bool quiet = false;
 };
 
 void print_summary(const Config& config, const PassResult& r, const std::string& dir) {
@@ -48,15 +50,20 @@ void print_summary(const Config& config, const PassResult& r, const std::string&
 int run_pass_command(const RunOptions& o) {
   const Config config = o.case_options.load();
   if (o.output_dir.empty()) throw ConfigError("-o DIR: an output folder is required");
+  const Case c = build_case(config);  // before the folder is touched: bad input leaves nothing behind
+  std::unique_ptr<PassFiles> files_owner;
   try {
-    prepare_output_folder(o.output_dir);
+    files_owner = std::make_unique<PassFiles>(o.output_dir, config.beam.modes);
   } catch (const std::exception& e) {
     throw ConfigError(std::string("-o ") + e.what());
   }
-  const Case c = build_case(config);
+  PassFiles& files = *files_owner;
   install_interrupt_handlers();
-  PassFiles files(o.output_dir, config.beam.modes);
-  const PassResult r = run_case(c, {&files, &interrupt_token()});
+  PassResult r;
+  {
+    PassProgressLine progress(o.quiet);
+    r = run_case(c, {&files, &interrupt_token(), progress.callback()});
+  }
   files.commit(r, config, *c.surface);
   if (o.json)
     std::cout << summary_json(r, config, *c.surface).dump(2) << "\n";
@@ -80,6 +87,7 @@ Command add_run_command(CLI::App& app) {
   opts->case_options.add_to(*sub);
   sub->add_option("-o,--output", opts->output_dir, "Output folder (created if needed)")->required();
   sub->add_flag("--json", opts->json, "Print summary.json instead of the human summary");
+  sub->add_flag("--quiet", opts->quiet, "No progress line on stderr (shown otherwise on a terminal for runs over a second)");
   return [opts] { return run_pass_command(*opts); };
 }
 

@@ -71,6 +71,11 @@ int run_sweep_command(const SweepCommandOptions& o) {
                 " cases not finished; run the same command again to resume");
     return kInterrupted;
   }
+  if (r.errors > 0) {
+    print_error(std::to_string(r.errors) + " of " + std::to_string(r.cases.size()) +
+                " cases could not be run or written (status `error` in sweep.csv); run the same command again to retry them");
+    return kRuntimeFailure;
+  }
   return kSuccess;
 }
 

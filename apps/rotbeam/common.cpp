@@ -1,6 +1,10 @@
 #include "common.hpp"
 
+#include <cmath>
 #include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <unistd.h>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -15,6 +19,38 @@ void CaseOptions::add_to(CLI::App& app) {
 }
 
 Config CaseOptions::load() const { return load_config(config_path, overrides); }
+
+PassProgressLine::PassProgressLine(bool quiet) : active_(!quiet && isatty(STDERR_FILENO)) {}
+
+PassProgressLine::~PassProgressLine() {
+  if (shown_) std::fprintf(stderr, "\r%80s\r", "");
+}
+
+std::function<void(const PassProgress&)> PassProgressLine::callback() {
+  if (!active_) return {};
+  return [this](const PassProgress& p) {
+    if (p.elapsed_s < 1.0) return;
+    const double done = (p.theta_deg - p.start_deg) / (p.end_deg - p.start_deg);
+    const double eta = done > 0 ? p.elapsed_s * (1 - done) / done : 0.0;
+    std::fprintf(stderr, "\r  θ = %.2f° of %.1f° (%.0f %%), %ld steps, %.1f s elapsed, ETA %.0f s   ", p.theta_deg,
+                 p.end_deg, 100 * done, p.steps, p.elapsed_s, eta);
+    std::fflush(stderr);
+    shown_ = true;
+  };
+}
+
+ScratchFile::~ScratchFile() {
+  if (!path_.empty()) std::remove(path_.c_str());
+}
+
+std::string ScratchFile::create(const std::string& stem, const std::string& suffix) {
+  std::string tmpl = (std::filesystem::temp_directory_path() / (stem + "-XXXXXX" + suffix)).string();
+  const int fd = ::mkstemps(tmpl.data(), static_cast<int>(suffix.size()));
+  if (fd < 0) throw std::runtime_error(tmpl + ": cannot create a scratch file");
+  ::close(fd);
+  path_ = tmpl;
+  return path_;
+}
 
 void print_error(const std::string& message) {
   std::string one_line = message;
@@ -41,7 +77,17 @@ void install_interrupt_handlers() {
 
 std::string fixed(double v, int decimals) {
   char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  const double a = std::abs(v);
+  if (std::isfinite(v) && (a >= 1e9 || (a > 0.0 && a < 0.5 * std::pow(10.0, -decimals))))
+    std::snprintf(buf, sizeof buf, "%.*e", std::max(decimals, 1), v);
+  else
+    std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+std::string number_text(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%g", v);
   return buf;
 }
 

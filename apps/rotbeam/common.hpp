@@ -2,6 +2,7 @@
 #pragma once
 
 #include "rotbeam/config.hpp"
+#include "rotbeam/pass.hpp"
 #include "rotbeam/outcome.hpp"
 #include "rotbeam/stop_token.hpp"
 
@@ -40,10 +41,41 @@ struct CaseOptions {
   Config load() const;  // throws ConfigError
 };
 
+/// The progress line of a pass on stderr when it is a terminal (from one second on), cleared at the
+/// end; nothing when stderr is not a terminal or `quiet`.
+class PassProgressLine {
+public:
+  explicit PassProgressLine(bool quiet);
+  ~PassProgressLine();
+  /// The callback for PassControl::on_progress (empty when nothing is to be shown).
+  std::function<void(const PassProgress&)> callback();
+
+private:
+  bool active_ = false, shown_ = false;
+};
+
+/// A uniquely named file in the system's temporary folder, removed when this goes out of scope.
+class ScratchFile {
+public:
+  ScratchFile() = default;
+  ScratchFile(const ScratchFile&) = delete;
+  ScratchFile& operator=(const ScratchFile&) = delete;
+  ~ScratchFile();
+  /// Creates the file (empty) and returns its path. Throws std::runtime_error when it cannot.
+  std::string create(const std::string& stem, const std::string& suffix);
+
+private:
+  std::string path_;
+};
+
 /// Prints "rotbeam: error: <message>" on one line to stderr.
 void print_error(const std::string& message);
 
-/// Formats a double with `digits` significant digits.
+/// A number with `decimals` decimals; with an exponent (and as many significant digits) when
+/// |v| ≥ 1e9 or it would show no significant digit, so no number prints as a long row of digits.
 std::string fixed(double v, int decimals);
+
+/// A number with 6 significant digits (%g), for messages.
+std::string number_text(double v);
 
 }  // namespace rotbeam::cli

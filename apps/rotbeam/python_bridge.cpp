@@ -42,13 +42,14 @@ int run_python_plots(const std::vector<std::string>& args) {
     _exit(127);
   }
   int status = 0;
-  if (pid < 0 || waitpid(pid, &status, 0) < 0) return 127;
-  if (WIFEXITED(status) && WEXITSTATUS(status) == 127) {
+  if (pid >= 0 && waitpid(pid, &status, 0) < 0) status = 127 << 8;
+  if (pid < 0 || (WIFEXITED(status) && WEXITSTATUS(status) == 127)) {
     print_error(std::string("cannot run the plotting module: ") + python +
                 " -m rotbeam.plots (needs Python 3 with numpy and matplotlib, and the rotbeam package; "
                 "set ROTBEAM_PYTHON / ROTBEAM_PYTHONPATH)");
+    return kRuntimeFailure;
   }
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : kRuntimeFailure;
 }
 
 }  // namespace rotbeam::cli

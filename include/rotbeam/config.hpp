@@ -47,6 +47,11 @@ struct Config {
 /// Throws ConfigError.
 Config load_config(const std::optional<std::string>& path, const std::vector<std::string>& overrides);
 
+/// Same, with the overrides as (key, TOML value) pairs: the keys are taken whole, never split at
+/// a `=` (the Python layer's dicts). A bare word is a string, as with --set.
+Config load_config_values(const std::optional<std::string>& path,
+                          const std::vector<std::pair<std::string, std::string>>& values);
+
 /// Same, from TOML text (for tests and the Python layer).
 Config load_config_string(const std::string& toml_text, const std::vector<std::string>& overrides);
 

@@ -16,10 +16,13 @@ struct FirstImpactResult {
   Eigen::VectorXd q, qd_before, qd_after;
   double min_gap = 0;               // closest approach when not found (the largest gap seen) [m]
   long steps = 0, rhs_evaluations = 0;
+  std::optional<NumericalFailure> failure;  // the free flight broke down (non-finite state, a step
+                                            // that does not advance, a jammed frictional impact)
 };
 
 /// Runs to the first impact (up to `end_angle_deg`) with free-flight step `step_s` [s] and applies
-/// system.law.impact. Throws std::invalid_argument when the initial shape already touches.
+/// system.law.impact. Throws std::invalid_argument when the initial shape already touches; a numerical
+/// breakdown is returned in `failure` (found = false).
 FirstImpactResult first_impact(const System& system, const InitialConditions& initial, double end_angle_deg,
                                double step_s);
 

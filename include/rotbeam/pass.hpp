@@ -9,6 +9,7 @@
 #include "rotbeam/stop_token.hpp"
 
 #include <cmath>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -89,11 +90,19 @@ struct PassResult {
   std::optional<NumericalFailure> failure;
 };
 
-/// How a pass is watched: where its rows and events go (nullptr: into PassResult) and the token
-/// that stops it (nullptr: none).
+/// Where a pass is, for progress reports.
+struct PassProgress {
+  double theta_deg = 0, start_deg = 0, end_deg = 0;  // current, initial and final beam angle
+  double elapsed_s = 0;                              // wall time so far
+  long steps = 0;
+};
+
+/// How a pass is watched: where its rows and events go (nullptr: into PassResult), the token that
+/// stops it (nullptr: none), and a progress callback (called a few times a second at most).
 struct PassControl {
   PassSink* sink = nullptr;
   const StopToken* stop = nullptr;
+  std::function<void(const PassProgress&)> on_progress;
 };
 
 /// Runs one pass of `system` from `initial` with options.scheme's stepper under the pass driver.

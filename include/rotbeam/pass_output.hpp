@@ -35,8 +35,11 @@ void prepare_output_folder(const std::filesystem::path& dir);
 
 /// Streams a pass into `dir`: history.csv and events.csv are written into temporaries beside their
 /// final names as the rows and events arrive, and commit() renames them into place and then writes
-/// summary.json. An older summary.json in `dir` is removed at construction; a writer destroyed
-/// without commit removes its temporaries. Throws std::runtime_error naming the path on I/O errors.
+/// summary.json (with the sizes of the two files under `files`, so a reader can tell a complete
+/// folder). While a writer lives it holds a lock on `dir` (the file `.rotbeam.lock`, removed when it
+/// ends): a second run into the same folder stops at once instead of mixing its files with the first's. At construction
+/// an older summary.json and temporaries left by a killed run are removed; a writer destroyed
+/// without commit removes its own. Throws std::runtime_error naming the path on I/O errors.
 class PassFiles final : public PassSink {
 public:
   PassFiles(const std::filesystem::path& dir, int n);
@@ -54,6 +57,7 @@ private:
     std::filesystem::path final_path, temporary_path;
     std::FILE* file = nullptr;
     std::string buffer;
+    std::uintmax_t bytes = 0;
   };
   void open(Stream& s, const std::string& name, const std::string& header);
   void flush(Stream& s);
@@ -61,8 +65,14 @@ private:
 
   std::filesystem::path dir_;
   Stream history_, events_;
+  int lock_fd_ = -1;
+  std::filesystem::path lock_path_;
   bool committed_ = false;
 };
+
+/// True when `dir` holds a complete run: a summary.json whose recorded file sizes match history.csv
+/// and events.csv. `summary` receives the parsed summary.json when it is.
+bool complete_run_folder(const std::filesystem::path& dir, nlohmann::json* summary = nullptr);
 
 /// Writes the files of a finished in-memory result (summary.json last).
 void write_pass_outputs(const std::filesystem::path& dir, const PassResult& result, const Config& config,

@@ -30,6 +30,11 @@ struct SweepCase {
   std::string folder;                   // "case-0001", …
 };
 
+/// The largest grid a sweep accepts (each case is a folder of files).
+inline constexpr std::size_t kMaxSweepCases = 100000;
+
+/// The cases of the grid, the last axis fastest. Throws ConfigError for a key varied twice or a grid of
+/// more than kMaxSweepCases cases.
 std::vector<SweepCase> sweep_cases(const std::vector<SweepAxis>& axes);
 
 enum class SweepStatus { done, resumed, failed, error, interrupted };

@@ -15,13 +15,28 @@ raises rotbeam.ConfigError (a ValueError) with the command line's one-line messa
 runs with the GIL released, so threads can run cases concurrently.
 """
 
+import errno
 import math
 import os
 
 from ._core import ConfigError, config_keys
 from . import _core
 
-__all__ = ["run", "impact", "modes", "Result", "ConfigError", "config_keys"]
+__all__ = ["run", "impact", "modes", "Result", "ConfigError", "ConfigFileNotFoundError", "config_keys"]
+
+
+class ConfigFileNotFoundError(ConfigError, FileNotFoundError):
+    """A configuration file that does not exist: a ConfigError with the command line's message, and a
+    FileNotFoundError (errno ENOENT, filename) for code that expects one."""
+
+    def __init__(self, path):
+        ConfigError.__init__(self, f"{path}: no such configuration file")
+        self.errno = errno.ENOENT
+        self.strerror = "no such configuration file"
+        self.filename = path
+
+    def __str__(self):
+        return f"{self.filename}: no such configuration file"
 
 
 def _toml_value(value, where):
@@ -51,25 +66,31 @@ def _toml_value(value, where):
 
 
 def _arguments(config, overrides):
+    """(path or None, [(dotted key, TOML value), …]): the keys are passed whole, never pasted into
+    `key=value` text, so a key holding '=' or spaces is an unknown key, not another assignment."""
     path = None
     sets = []
     if config is None:
         pass
     elif isinstance(config, (str, os.PathLike)):
         path = os.fspath(config)
+        if not os.path.exists(path):
+            raise ConfigFileNotFoundError(path)
     elif isinstance(config, dict):
         for section, table in config.items():
             if not isinstance(table, dict):
                 raise ConfigError(f"{section} = {table!r}: expected a table of keys, e.g. {{'{section}': {{'key': value}}}}")
             for key, value in table.items():
-                sets.append(f"{section}.{key}={_toml_value(value, f'{section}.{key}')}")
+                sets.append((f"{section}.{key}", _toml_value(value, f"{section}.{key}")))
     else:
         raise TypeError(f"config must be a path, a dict or None, not {type(config).__name__}")
     if overrides:
         if not isinstance(overrides, dict):
             raise TypeError(f"overrides must be a dict of dotted keys, not {type(overrides).__name__}")
         for key, value in overrides.items():
-            sets.append(f"{key}={_toml_value(value, key)}")
+            if not isinstance(key, str):
+                raise TypeError(f"override keys are dotted strings like 'hub.speed_rpm', not {key!r}")
+            sets.append((key, _toml_value(value, key)))
     return path, sets
 
 
@@ -96,7 +117,8 @@ class Result:
 
 def run(config=None, overrides=None):
     """A whole pass (`rotbeam run`). Returns a Result; a diagnosed numerical failure is reported in
-    Result.failure with everything computed up to it."""
+    Result.failure with everything computed up to it. Ctrl-C stops the pass within a step and
+    raises KeyboardInterrupt."""
     path, sets = _arguments(config, overrides)
     summary, history, events = _core.run(path, sets)
     return Result(summary, history, events)
@@ -114,5 +136,5 @@ def modes(config=None, overrides=None, speeds_rpm=None):
     {"speeds_rpm": array (S,), "frequencies_hz": array (S, n)}. Default speeds: 0, the Table 5-2
     speeds and the case's own."""
     path, sets = _arguments(config, overrides)
-    speeds, freq = _core.modes(path, sets, [] if speeds_rpm is None else [float(s) for s in speeds_rpm])
+    speeds, freq = _core.modes(path, sets, None if speeds_rpm is None else [float(s) for s in speeds_rpm])
     return {"speeds_rpm": speeds, "frequencies_hz": freq}

@@ -45,6 +45,28 @@ def case_title(summary):
             f"μ = {c['surface']['friction']:g}, {c['beam']['modes']} modes, {summary['scheme']} scheme")
 
 
+class DamagedFolder(Exception):
+    """A run folder whose files are not those its summary.json describes."""
+
+
+def check_run_files(folder):
+    """Raises DamagedFolder when summary.json does not parse or history.csv / events.csv are missing
+    or not the size summary.json recorded (a truncated or replaced file)."""
+    folder = Path(folder)
+    try:
+        summary = json.loads((folder / "summary.json").read_text())
+    except ValueError as e:
+        raise DamagedFolder(f"{folder / 'summary.json'}: not valid JSON ({e})") from None
+    for name in ("history.csv", "events.csv"):
+        path = folder / name
+        if not path.exists():
+            raise DamagedFolder(f"{path}: missing")
+        recorded = summary.get("files", {}).get(name, {}).get("bytes")
+        if recorded is not None and path.stat().st_size != recorded:
+            raise DamagedFolder(f"{path}: {path.stat().st_size} bytes where summary.json records {recorded}: "
+                                "truncated or replaced")
+
+
 def surface_of(summary):
     """The surface as the run described it (summary.json `surface`). Folders written before the
     surface described itself hold the thesis's plane, rebuilt here from their configuration."""
@@ -337,11 +359,19 @@ def main(argv=None):
         if (folder / "sweep.csv").exists():
             written = plot_sweep(folder, out, args.cases)
         elif (folder / "summary.json").exists():
+            check_run_files(folder)
             written = plot_run(folder, out)
         else:
             print(f"rotbeam: error: {folder}: neither a run folder (summary.json) nor a sweep folder (sweep.csv)",
                   file=sys.stderr)
             return 2
+    except DamagedFolder as e:
+        print(f"rotbeam: error: {e}", file=sys.stderr)
+        return 2
+    except (ValueError, KeyError, IndexError, TypeError) as e:  # json.JSONDecodeError is a ValueError
+        print(f"rotbeam: error: {folder}: damaged or incomplete run files ({type(e).__name__}: {e})"[:400],
+              file=sys.stderr)
+        return 2
     except OSError as e:
         print(f"rotbeam: error: {e}", file=sys.stderr)
         return 1

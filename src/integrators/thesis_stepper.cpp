@@ -23,6 +23,7 @@ namespace rotbeam {
 namespace {
 
 constexpr double kSurfaceTolerance = 1e-9;  // [m]: gaps within 1 nm after a separation are the corrector's round-off
+constexpr double kMinStepFraction = 1e-12;  // a configured step below this fraction of the pass's end time
 
 using detail::short_number;
 
@@ -70,6 +71,21 @@ private:
     acceleration(sys_.beam, q, v, nullptr, *ws_, a);
   }
 
+  // A step that cannot advance t in double precision (t + h == t), or a configured step so small that
+  // the pass would need over 1e12 of them, would run for ever.
+  static bool stalls(double t, double h) { return !(t + h > t); }
+  bool too_small(double step, double t_stop) const { return step < kMinStepFraction * std::abs(t_stop); }
+  StepOutcome step_too_small(double t, double step, double t_stop) const {
+    return failed(FailureKind::step_underflow, t,
+                  "the step " + short_number(step) + " s would need over 1e12 steps to reach t = " + short_number(t_stop) +
+                      " s");
+  }
+  StepOutcome stalled(double t, double h) const {
+    return failed(FailureKind::step_underflow, t,
+                  "the step " + short_number(h) + " s does not advance t = " + short_number(t) +
+                      " s in double precision (t + h == t)");
+  }
+
   // One RK5 step of free flight in place; returns the gap at its end.
   double free_rk5(FilamentState& s, double h) {
     auto accel = [&](double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v, Eigen::VectorXd& a) {
@@ -83,9 +99,13 @@ private:
 
   StepOutcome free_step(FilamentState& s, double t_stop) {
     StepOutcome out;
+    if (too_small(opt_.free_step_s, t_stop)) return step_too_small(s.t, opt_.free_step_s, t_stop);
+    if (too_small(opt_.contact_step_s, t_stop)) return step_too_small(s.t, opt_.contact_step_s, t_stop);
     if (mode_ == Mode::separation_step) {
       // Step 4b: one free step of h_contact from the separation point.
-      const double c = free_rk5(s, std::min(opt_.contact_step_s, t_stop - s.t));
+      const double h = std::min(opt_.contact_step_s, t_stop - s.t);
+      if (stalls(s.t, h)) return stalled(s.t, h);
+      const double c = free_rk5(s, h);
       if (c >= 0.0) {
         deepest_ = c;
         clearing_t0_ = s.t;
@@ -100,7 +120,9 @@ private:
     }
     if (mode_ == Mode::clearing) {
       // Step 5a: free steps of h_free while the tip is at or beyond the surface.
-      const double c = free_rk5(s, std::min(opt_.free_step_s, t_stop - s.t));
+      const double h = std::min(opt_.free_step_s, t_stop - s.t);
+      if (stalls(s.t, h)) return stalled(s.t, h);
+      const double c = free_rk5(s, h);
       deepest_ = std::max(deepest_, c);
       if (c < 0.0 || s.t >= t_stop) finish_clearing(s, c, out);
       return out;
@@ -111,6 +133,7 @@ private:
     // Step ends on the grid t_k = t_free + k h_free (no drift from summing steps), the last at t_stop.
     const double t_next = std::min(free_t0_ + static_cast<double>(free_k_ + 1) * opt_.free_step_s, t_stop);
     const double h = t_next - s.t;
+    if (!(t_next > s.t)) return stalled(s.t, opt_.free_step_s);
     stats_.rhs_evaluations += rk_.step(accel, s.t, s.q, s.qd, h, q1_, qd1_);
     ++stats_.steps;
     const double c1 = gap(sys_.beam, sys_.surface, t_next, q1_);
@@ -178,6 +201,9 @@ private:
         (std::abs(lambda_prev_) > 0.0 && std::abs(lambda_prev_) < opt_.fine_below_n) ? opt_.fine_contact_step_s
                                                                                       : opt_.contact_step_s,
         t_stop - s.t);
+    if (stalls(s.t, h)) return stalled(s.t, h);
+    if (too_small(opt_.contact_step_s, t_stop) || too_small(opt_.fine_contact_step_s, t_stop))
+      return step_too_small(s.t, std::min(opt_.contact_step_s, opt_.fine_contact_step_s), t_stop);
     predictor(s.t, s, h);
     const double tn = s.t + h;
     double lambda_iter = lambda_pred_;

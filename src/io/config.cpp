@@ -9,24 +9,42 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <cerrno>
+#include <fstream>
 #include <map>
 #include <sstream>
+#include <system_error>
 
 namespace rotbeam {
 
 namespace {
 
+// The shortest text that reads back as v (1e-11, not 9.9999999999999994e-12).
 std::string format_number(double v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
+  char buf[64];
+  const auto res = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, res.ptr);
+}
+
+// Control characters (a NUL, a newline) shown as \uXXXX, so that a message stays one whole line.
+std::string printable(const std::string& s) {
+  std::string out;
+  for (unsigned char c : s) {
+    if (c < 0x20 || c == 0x7f) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", c);
+      out += buf;
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
+  return out;
 }
 
 // A short, single-line rendering of a TOML node for error messages, with numbers in their shortest
 // round-trip form (what the user typed: -0.0635, not -0.063500000000000001).
 std::string render(const toml::node& node) {
-  if (node.is_string()) return '"' + *node.value<std::string>() + '"';
+  if (node.is_string()) return '"' + printable(*node.value<std::string>()) + '"';
   if (node.is_integer()) return std::to_string(*node.value<int64_t>());
   if (node.is_floating_point()) {
     const double v = *node.value<double>();
@@ -34,7 +52,9 @@ std::string render(const toml::node& node) {
     if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
     char buf[64];
     const auto res = std::to_chars(buf, buf + sizeof buf, v);
-    return std::string(buf, res.ptr);
+    std::string s(buf, res.ptr);
+    if (s.find_first_of(".eEn") == std::string::npos) s += ".0";  // a float written 5.0 is not the integer 5
+    return s;
   }
   if (node.is_boolean()) return *node.value<bool>() ? "true" : "false";
   if (const toml::array* arr = node.as_array()) {
@@ -97,7 +117,7 @@ bool boolean(const std::string& key, const toml::node& node) {
   return *node.value<bool>();
 }
 
-std::vector<double> number_array(const std::string& key, const toml::node& node) {
+std::vector<double> number_array(const std::string& key, const toml::node& node, double bound) {
   const toml::array* arr = node.as_array();
   if (!arr) fail(key, node, "must be an array of numbers");
   std::vector<double> out;
@@ -105,6 +125,7 @@ std::vector<double> number_array(const std::string& key, const toml::node& node)
     if (!el.is_number()) fail(key, node, "must be an array of numbers");
     const double v = *el.value<double>();
     if (!std::isfinite(v)) fail(key, node, "must hold finite numbers");
+    if (std::abs(v) > bound) fail(key, node, "must hold numbers in [-" + format_number(bound) + ", " + format_number(bound) + "]");
     out.push_back(v);
   }
   return out;
@@ -124,23 +145,25 @@ using Setter = std::function<void(Parsed&, const std::string&, const toml::node&
 
 const std::vector<std::pair<std::string, Setter>>& schema() {
   static const std::vector<std::pair<std::string, Setter>> keys = {
-      {"beam.length_m", [](Parsed& p, auto& k, auto& n) { p.config.beam.length_m = positive(k, n); }},
-      {"beam.diameter_m", [](Parsed& p, auto& k, auto& n) { p.config.beam.diameter_m = positive(k, n); }},
-      {"beam.density_kg_m3", [](Parsed& p, auto& k, auto& n) { p.config.beam.density_kg_m3 = positive(k, n); }},
-      {"beam.youngs_modulus_pa", [](Parsed& p, auto& k, auto& n) { p.config.beam.youngs_modulus_pa = positive(k, n); }},
+      // Physical ranges wide enough for any filament or blade, narrow enough that the arithmetic stays
+      // finite (a diameter of 5e-324 m has a zero area; a radius of 1e300 m overflows the energies).
+      {"beam.length_m", [](Parsed& p, auto& k, auto& n) { p.config.beam.length_m = number_in(k, n, 0.0, 100.0, true, false); }},
+      {"beam.diameter_m", [](Parsed& p, auto& k, auto& n) { p.config.beam.diameter_m = number_in(k, n, 1e-7, 1.0, false, false); }},
+      {"beam.density_kg_m3", [](Parsed& p, auto& k, auto& n) { p.config.beam.density_kg_m3 = number_in(k, n, 1e-3, 1e6, false, false); }},
+      {"beam.youngs_modulus_pa", [](Parsed& p, auto& k, auto& n) { p.config.beam.youngs_modulus_pa = number_in(k, n, 1e3, 1e15, false, false); }},
       {"beam.modes",
        [](Parsed& p, auto& k, auto& n) {
          p.config.beam.modes = integer_in(k, n, 1, kMaxModes);
          p.modes_node = &n;
        }},
-      {"hub.radius_m", [](Parsed& p, auto& k, auto& n) { p.config.beam.hub_radius_m = number_in(k, n, 0.0, INFINITY, false, true); }},
-      {"hub.speed_rpm", [](Parsed& p, auto& k, auto& n) { p.config.beam.speed_rpm = positive(k, n); }},
+      {"hub.radius_m", [](Parsed& p, auto& k, auto& n) { p.config.beam.hub_radius_m = number_in(k, n, 0.0, 100.0, false, false); }},
+      {"hub.speed_rpm", [](Parsed& p, auto& k, auto& n) { p.config.beam.speed_rpm = number_in(k, n, 0.0, 1e6, true, false); }},
       {"surface.depth_fraction",
        [](Parsed& p, auto& k, auto& n) {
          p.config.surface.depth_fraction = number_in(k, n, 0.0, 1.0, true, true);
          p.depth_node = &n;
        }},
-      {"surface.friction", [](Parsed& p, auto& k, auto& n) { p.config.contact.friction.mu = number_in(k, n, 0.0, INFINITY, false, true); }},
+      {"surface.friction", [](Parsed& p, auto& k, auto& n) { p.config.contact.friction.mu = number_in(k, n, 0.0, 1e3, false, false); }},
       {"impact.restitution",
        [](Parsed& p, auto& k, auto& n) {
          if (n.is_string()) {
@@ -159,7 +182,7 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
          p.config.contact.impact.friction =
              one_of(k, n, {"none", "coulomb"}) == "coulomb" ? ImpactFriction::coulomb : ImpactFriction::none;
        }},
-      {"impact.plastic_below_m_s", [](Parsed& p, auto& k, auto& n) { p.config.contact.impact.plastic_below_m_s = number_in(k, n, 0.0, INFINITY, false, true); }},
+      {"impact.plastic_below_m_s", [](Parsed& p, auto& k, auto& n) { p.config.contact.impact.plastic_below_m_s = number_in(k, n, 0.0, 1e6, false, false); }},
       {"initial.start",
        [](Parsed& p, auto& k, auto& n) {
          p.config.initial.start = one_of(k, n, {"rigid", "flexible"});
@@ -167,12 +190,12 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
        }},
       {"initial.modal_velocity",
        [](Parsed& p, auto& k, auto& n) {
-         p.config.initial.modal_velocity = number_array(k, n);
+         p.config.initial.modal_velocity = number_array(k, n, 1e4);
          p.velocity_node = &n;
        }},
       {"initial.modal_displacement",
        [](Parsed& p, auto& k, auto& n) {
-         p.config.initial.modal_displacement = number_array(k, n);
+         p.config.initial.modal_displacement = number_array(k, n, 10.0);
          p.displacement_node = &n;
        }},
       {"simulation.scheme",
@@ -185,19 +208,21 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
          p.end_angle_node = &n;
        }},
       {"simulation.rtol", [](Parsed& p, auto& k, auto& n) { p.config.simulation.rtol = number_in(k, n, 0.0, 1.0, true, true); }},
-      {"simulation.atol", [](Parsed& p, auto& k, auto& n) { p.config.simulation.atol = positive(k, n); }},
-      {"simulation.max_step_s", [](Parsed& p, auto& k, auto& n) { p.config.simulation.max_step_s = number_in(k, n, 0.0, 1e-2, true, false); }},
-      {"simulation.free_step_s", [](Parsed& p, auto& k, auto& n) { p.config.simulation.free_step_s = number_in(k, n, 0.0, 1e-3, true, false); }},
-      {"simulation.contact_step_s", [](Parsed& p, auto& k, auto& n) { p.config.simulation.contact_step_s = number_in(k, n, 0.0, 1e-4, true, false); }},
-      {"simulation.fine_contact_step_s", [](Parsed& p, auto& k, auto& n) { p.config.simulation.fine_contact_step_s = number_in(k, n, 0.0, 1e-4, true, false); }},
-      {"simulation.fine_below_n", [](Parsed& p, auto& k, auto& n) { p.config.simulation.fine_below_n = number_in(k, n, 0.0, INFINITY, false, true); }},
+      // atol bounds the error of q [m], q̇ [m/s] and the contact integrals: above 1e-3 it bounds nothing.
+      {"simulation.atol", [](Parsed& p, auto& k, auto& n) { p.config.simulation.atol = number_in(k, n, 0.0, 1e-3, true, false); }},
+      // Steps below these would take over 1e9 steps for a pass of a few centiseconds.
+      {"simulation.max_step_s", [](Parsed& p, auto& k, auto& n) { p.config.simulation.max_step_s = number_in(k, n, 1e-11, 1e-2, false, false); }},
+      {"simulation.free_step_s", [](Parsed& p, auto& k, auto& n) { p.config.simulation.free_step_s = number_in(k, n, 1e-11, 1e-3, false, false); }},
+      {"simulation.contact_step_s", [](Parsed& p, auto& k, auto& n) { p.config.simulation.contact_step_s = number_in(k, n, 1e-12, 1e-4, false, false); }},
+      {"simulation.fine_contact_step_s", [](Parsed& p, auto& k, auto& n) { p.config.simulation.fine_contact_step_s = number_in(k, n, 1e-13, 1e-4, false, false); }},
+      {"simulation.fine_below_n", [](Parsed& p, auto& k, auto& n) { p.config.simulation.fine_below_n = number_in(k, n, 0.0, 1e6, false, false); }},
       {"simulation.corrector_tolerance", [](Parsed& p, auto& k, auto& n) { p.config.simulation.corrector_tolerance = number_in(k, n, 0.0, 1.0, true, true); }},
       {"simulation.corrector_max_iterations",
        [](Parsed& p, auto& k, auto& n) { p.config.simulation.corrector_max_iterations = integer_in(k, n, 1, 10000); }},
       {"simulation.max_impacts", [](Parsed& p, auto& k, auto& n) { p.config.simulation.max_impacts = integer_in(k, n, 1, 100000000); }},
-      {"simulation.deflection_warning_ratio", [](Parsed& p, auto& k, auto& n) { p.config.simulation.deflection_warning_ratio = positive(k, n); }},
+      {"simulation.deflection_warning_ratio", [](Parsed& p, auto& k, auto& n) { p.config.simulation.deflection_warning_ratio = number_in(k, n, 0.0, 100.0, true, false); }},
       {"simulation.deflection_limit_is_error", [](Parsed& p, auto& k, auto& n) { p.config.simulation.deflection_limit_is_error = boolean(k, n); }},
-      {"output.interval_s", [](Parsed& p, auto& k, auto& n) { p.config.simulation.output_interval_s = number_in(k, n, 0.0, INFINITY, false, true); }},
+      {"output.interval_s", [](Parsed& p, auto& k, auto& n) { p.config.simulation.output_interval_s = number_in(k, n, 0.0, 1e30, false, false); }},
       {"compat.thesis_forces", [](Parsed& p, auto& k, auto& n) { p.config.contact.friction.thesis_forces = boolean(k, n); }},
       {"compat.thesis_dcdt", [](Parsed& p, auto& k, auto& n) { p.config.simulation.thesis_dcdt = boolean(k, n); }},
       {"compat.restitution_speed",
@@ -233,18 +258,28 @@ std::string suggestion(const std::string& key) {
   return best.empty() ? std::string() : " (did you mean " + best + "?)";
 }
 
+void apply_value(toml::table& root, const std::string& key, const std::string& text, const std::string& what);
+
+std::string trimmed(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t"), e = s.find_last_not_of(" \t");
+  return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
+}
+
 void apply_override(toml::table& root, const std::string& assignment) {
   const auto eq = assignment.find('=');
-  if (eq == std::string::npos || eq == 0)
-    throw ConfigError("--set " + assignment + ": expected section.key=value");
-  const std::string key = assignment.substr(0, eq);
-  const std::string text = assignment.substr(eq + 1);
+  if (eq == std::string::npos || trimmed(assignment.substr(0, eq)).empty())
+    throw ConfigError("--set " + printable(assignment) + ": expected section.key=value");
+  apply_value(root, trimmed(assignment.substr(0, eq)), trimmed(assignment.substr(eq + 1)), "--set " + printable(assignment));
+}
+
+// Sets `key` to the TOML value `text` (a bare word is a string). `what` names the override in errors.
+void apply_value(toml::table& root, const std::string& key, const std::string& text, const std::string& what) {
   const auto dot = key.find('.');
   if (dot == std::string::npos || dot == 0 || dot + 1 == key.size() || key.find('.', dot + 1) != std::string::npos)
-    throw ConfigError("--set " + assignment + ": the key must be section.key");
+    throw ConfigError(what + ": the key must be section.key");
   const std::string section = key.substr(0, dot), name = key.substr(dot + 1);
   if (std::none_of(schema().begin(), schema().end(), [&](const auto& s) { return s.first == key; }))
-    throw ConfigError("--set " + key + ": unknown key" + suggestion(key));
+    throw ConfigError((what.rfind("--set ", 0) == 0 ? "--set " : "") + printable(key) + ": unknown key" + suggestion(key));
   toml::table value_table;
   bool parsed_ok = false;
   if (!text.empty()) {
@@ -264,8 +299,19 @@ void apply_override(toml::table& root, const std::string& assignment) {
     sec->insert_or_assign(name, text);  // a bare word is a string
 }
 
+Config validate(toml::table& root);
+
 Config resolve(toml::table& root, const std::vector<std::string>& overrides) {
   for (const std::string& o : overrides) apply_override(root, o);
+  return validate(root);
+}
+
+Config resolve(toml::table& root, const std::vector<std::pair<std::string, std::string>>& values) {
+  for (const auto& [key, text] : values) apply_value(root, key, text, printable(key) + " = " + printable(text));
+  return validate(root);
+}
+
+Config validate(toml::table& root) {
   Parsed p;
   std::map<std::string, const Setter*> by_key;
   for (const auto& [k, s] : schema()) by_key[k] = &s;
@@ -305,6 +351,12 @@ Config resolve(toml::table& root, const std::vector<std::string>& overrides) {
       throw ConfigError("initial.start = \"rigid\" contradicts a non-zero initial.modal_velocity or "
                         "initial.modal_displacement (a rigid start has q = q̇ = 0)");
     ini.start = "flexible";
+  }
+  if (!(c.beam.diameter_m < c.beam.length_m)) {
+    const toml::node* node = root.at_path("beam.diameter_m").node();
+    const std::string what = "must be below beam.length_m = " + format_number(c.beam.length_m) + " (a filament, not a disc)";
+    if (node) fail("beam.diameter_m", *node, what);
+    throw ConfigError("beam.diameter_m = " + format_number(c.beam.diameter_m) + ": " + what);
   }
   // The start the configuration describes must be possible (checked through the beam and surface).
   const ForeshorteningBeam beam = make_beam(c.beam);
@@ -387,19 +439,37 @@ Config load_config_string(const std::string& toml_text, const std::vector<std::s
   return resolve(root, overrides);
 }
 
-Config load_config(const std::optional<std::string>& path, const std::vector<std::string>& overrides) {
+namespace {
+toml::table read_file(const std::optional<std::string>& path) {
   toml::table root;
-  if (path) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(*path, ec)) throw ConfigError(*path + ": no such configuration file");
-    try {
-      root = toml::parse_file(*path);
-    } catch (const toml::parse_error& e) {
-      throw ConfigError(*path + ":" + std::to_string(e.source().begin.line) + ":" +
-                        std::to_string(e.source().begin.column) + ": TOML syntax error: " + std::string(e.description()));
-    }
+  if (!path) return root;
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status st = fs::status(*path, ec);
+  if (!fs::exists(st)) throw ConfigError(*path + ": no such configuration file");
+  if (fs::is_directory(st)) throw ConfigError(*path + ": is a folder, not a configuration file");
+  if (!fs::is_regular_file(st)) throw ConfigError(*path + ": is not a regular file (a device, a pipe or a socket)");
+  std::ifstream probe(*path);
+  if (!probe) throw ConfigError(*path + ": cannot read the configuration file (" + std::generic_category().message(errno) + ")");
+  try {
+    root = toml::parse_file(*path);
+  } catch (const toml::parse_error& e) {
+    throw ConfigError(*path + ":" + std::to_string(e.source().begin.line) + ":" +
+                      std::to_string(e.source().begin.column) + ": TOML syntax error: " + printable(std::string(e.description())));
   }
+  return root;
+}
+}  // namespace
+
+Config load_config(const std::optional<std::string>& path, const std::vector<std::string>& overrides) {
+  toml::table root = read_file(path);
   return resolve(root, overrides);
+}
+
+Config load_config_values(const std::optional<std::string>& path,
+                          const std::vector<std::pair<std::string, std::string>>& values) {
+  toml::table root = read_file(path);
+  return resolve(root, values);
 }
 
 const std::vector<std::string>& config_keys() {

@@ -6,6 +6,10 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <fcntl.h>
+#include <fstream>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <system_error>
 #include <unistd.h>
 
@@ -164,20 +168,50 @@ void prepare_output_folder(const std::filesystem::path& dir) {
 }
 
 PassFiles::PassFiles(const std::filesystem::path& dir, int n) : dir_(dir) {
+  namespace fs = std::filesystem;
   prepare_output_folder(dir);
+  // One run at a time in a folder: an advisory lock the kernel releases if the process dies. The
+  // lock file is removed when the writer ends; a lock taken on a file that was removed meanwhile is
+  // not the folder's lock, so it is taken again on the current one.
+  const fs::path lock = dir / ".rotbeam.lock";
+  for (;;) {
+    lock_fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (lock_fd_ < 0) throw std::runtime_error(io_error(lock, "cannot create the folder's lock", errno));
+    if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+      ::close(lock_fd_);
+      lock_fd_ = -1;
+      throw std::runtime_error(dir.string() + ": another rotbeam run is writing into this folder; choose another -o");
+    }
+    struct stat held {}, current {};
+    if (::fstat(lock_fd_, &held) == 0 && ::stat(lock.c_str(), &current) == 0 && held.st_ino == current.st_ino &&
+        held.st_dev == current.st_dev)
+      break;
+    ::close(lock_fd_);
+  }
+  lock_path_ = lock;
+  // With the lock held no live run writes here: temporaries are a killed run's leftovers.
   std::error_code ec;
-  std::filesystem::remove(dir / "summary.json", ec);  // the folder is not complete until commit()
+  for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    for (const char* stem : {"history.csv.tmp.", "events.csv.tmp.", "summary.json.tmp."})
+      if (name.rfind(stem, 0) == 0) fs::remove(e.path(), ec);
+  }
+  fs::remove(dir / "summary.json", ec);  // the folder is not complete until commit()
   if (ec) throw std::runtime_error((dir / "summary.json").string() + ": cannot remove the older summary (" + ec.message() + ")");
   open(history_, "history.csv", history_header(n));
   open(events_, "events.csv", events_header());
 }
 
 PassFiles::~PassFiles() {
-  if (committed_) return;
-  for (Stream* s : {&history_, &events_}) {
-    if (s->file) std::fclose(s->file);
-    s->file = nullptr;
-    if (!s->temporary_path.empty()) std::remove(s->temporary_path.c_str());
+  if (!committed_)
+    for (Stream* s : {&history_, &events_}) {
+      if (s->file) std::fclose(s->file);
+      s->file = nullptr;
+      if (!s->temporary_path.empty()) std::remove(s->temporary_path.c_str());
+    }
+  if (lock_fd_ >= 0) {
+    ::unlink(lock_path_.c_str());  // while still held, so no other run locks the removed file
+    ::close(lock_fd_);             // releases the lock
   }
 }
 
@@ -194,6 +228,7 @@ void PassFiles::flush(Stream& s) {
   if (s.buffer.empty()) return;
   const std::size_t written = std::fwrite(s.buffer.data(), 1, s.buffer.size(), s.file);
   if (written != s.buffer.size()) throw std::runtime_error(io_error(s.final_path, "write failed", errno));
+  s.bytes += written;
   s.buffer.clear();
 }
 
@@ -221,8 +256,29 @@ void PassFiles::event(const PassEvent& event) {
 void PassFiles::commit(const PassResult& result, const Config& config, const Surface& surface) {
   close(history_);
   close(events_);
-  write_file_atomically(dir_ / "summary.json", summary_json(result, config, surface).dump(2) + "\n");
+  nlohmann::json j = summary_json(result, config, surface);
+  j["files"] = {{"history.csv", {{"bytes", history_.bytes}}}, {"events.csv", {{"bytes", events_.bytes}}}};
+  write_file_atomically(dir_ / "summary.json", j.dump(2) + "\n");
   committed_ = true;
+}
+
+bool complete_run_folder(const std::filesystem::path& dir, nlohmann::json* summary) {
+  namespace fs = std::filesystem;
+  std::ifstream in(dir / "summary.json");
+  if (!in) return false;
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(in);
+    for (const char* name : {"history.csv", "events.csv"}) {
+      std::error_code ec;
+      const std::uintmax_t size = fs::file_size(dir / name, ec);
+      if (ec || size != j.at("files").at(name).at("bytes").get<std::uintmax_t>()) return false;
+    }
+  } catch (const std::exception&) {
+    return false;
+  }
+  if (summary) *summary = std::move(j);
+  return true;
 }
 
 void write_pass_outputs(const std::filesystem::path& dir, const PassResult& result, const Config& config,

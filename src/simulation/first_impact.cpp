@@ -36,7 +36,12 @@ FirstImpactResult first_impact(const System& system, const InitialConditions& in
     bool touched = false;
     while (s.t < t_end && !touched) {
       const StepOutcome o = stepper->step(s, t_end);
-      if (o.status == StepStatus::failed) throw std::runtime_error(o.failure->message);
+      if (o.status == StepStatus::failed) {
+        r.failure = o.failure;
+        r.failure->theta = beam.theta(r.failure->t);
+        r.steps = stepper->statistics().steps;
+        return r;
+      }
       touched = o.status == StepStatus::root;
       r.min_gap = std::max(r.min_gap, gap(beam, system.surface, s.t, s.q));
     }
@@ -54,7 +59,12 @@ FirstImpactResult first_impact(const System& system, const InitialConditions& in
   TipKinematics tip(n);
   r.impact = apply_impact(beam, system.surface, system.law.impact, r.t, r.q, r.qd_after, *ws, tip,
                           system.law.friction.mu);
-  if (r.impact.jammed) throw std::domain_error("the frictional impact jams (Painlevé's paradox of impacts)");
+  if (r.impact.jammed) {
+    r.found = false;
+    r.failure = NumericalFailure{FailureKind::painleve, r.t, r.theta,
+                                 "the frictional impact jams: sliding drives the tip into the surface and the normal "
+                                 "approach never ends (Painlevé's paradox of impacts)"};
+  }
   r.x_tip = tip.X;
   r.y_tip = tip.Y;
   return r;

@@ -15,7 +15,8 @@ constexpr double kInstant = 1e-12;          // [s]: a phase that lasted less did
 using detail::short_number;
 }  // namespace
 
-PassDriver::PassDriver(const System& system, const PassOptions& options, Stepper& stepper, PassRecorder& recorder)
+PassDriver::PassDriver(const System& system, const PassOptions& options, Stepper& stepper, PassRecorder& recorder,
+                       const PassControl& control)
     : system_(system),
       options_(options),
       stepper_(stepper),
@@ -25,8 +26,25 @@ PassDriver::PassDriver(const System& system, const PassOptions& options, Stepper
       tip_(system.beam.modes()),
       state_(system.beam.modes()),
       qd_before_(system.beam.modes()),
-      force_(system.beam.modes()) {
+      force_(system.beam.modes()),
+      on_progress_(control.on_progress) {
   t_end_ = system.beam.time_at(options.end_angle_deg * M_PI / 180.0);
+  wall0_ = next_report_ = std::chrono::steady_clock::now();
+}
+
+void PassDriver::report_progress() {
+  // The clock is read every 256 accepted points, the callback called at most four times a second.
+  if (!on_progress_ || (++progress_count_ & 255) != 0) return;
+  const auto now = std::chrono::steady_clock::now();
+  if (now < next_report_) return;
+  next_report_ = now + std::chrono::milliseconds(250);
+  PassProgress p;
+  p.theta_deg = system_.beam.theta(state_.t) * 180.0 / M_PI;
+  p.start_deg = system_.beam.theta(0.0) * 180.0 / M_PI;
+  p.end_deg = options_.end_angle_deg;
+  p.elapsed_s = std::chrono::duration<double>(now - wall0_).count();
+  p.steps = stepper_.statistics().steps;
+  on_progress_(p);
 }
 
 void PassDriver::run(const InitialConditions& ic) {
@@ -91,6 +109,7 @@ void PassDriver::free_flight() {
       return;
     }
     rec_.accept(state_.t, state_.q, state_.qd, Phase::free, {}, {});
+    report_progress();
     if (o.note) {
       rec_.event(o.note->kind, state_.t, state_.q, o.note->detail);
       if (!o.note->warning.empty()) rec_.warn(state_.t, state_.q, o.note->warning);
@@ -211,6 +230,7 @@ void PassDriver::contact() {
       state_.slip = d.direction;
     }
     instant_transitions_ = 0;
+    report_progress();
     if (rec_.stop_requested(state_.t)) break;
   }
   finish(Phase::contact);
@@ -234,7 +254,7 @@ PassResult run_pass(const System& system, const InitialConditions& initial, cons
   {
     const std::unique_ptr<Stepper> stepper = make_stepper(system, options);
     PassRecorder recorder(system, options, control, result);
-    PassDriver driver(system, options, *stepper, recorder);
+    PassDriver driver(system, options, *stepper, recorder, control);
     driver.run(initial);
   }
   result.summary.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();

@@ -8,11 +8,14 @@
 
 #include "rotbeam/pass.hpp"
 
+#include <chrono>
+
 namespace rotbeam {
 
 class PassDriver {
 public:
-  PassDriver(const System& system, const PassOptions& options, Stepper& stepper, PassRecorder& recorder);
+  PassDriver(const System& system, const PassOptions& options, Stepper& stepper, PassRecorder& recorder,
+             const PassControl& control);
   /// Runs the pass from `initial` to the end angle or a diagnosed failure.
   void run(const InitialConditions& initial);
 
@@ -31,6 +34,7 @@ private:
   void fail(FailureKind kind, double t, const std::string& message, Phase phase);
   void finish(Phase phase);
   bool check_slip();
+  void report_progress();
 
   const System system_;
   const PassOptions options_;
@@ -44,6 +48,9 @@ private:
   double t_end_ = 0;
   bool done_ = false;
   int instant_transitions_ = 0;  // phase changes without time advancing (chatter guard)
+  std::function<void(const PassProgress&)> on_progress_;
+  std::chrono::steady_clock::time_point wall0_, next_report_;
+  long progress_count_ = 0;
 };
 
 }  // namespace rotbeam

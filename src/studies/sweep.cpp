@@ -98,7 +98,15 @@ SweepAxis parse_sweep_axis(const std::string& spec) {
 
 std::vector<SweepCase> sweep_cases(const std::vector<SweepAxis>& axes) {
   std::size_t total = 1;
-  for (const SweepAxis& a : axes) total *= a.values.size();
+  for (std::size_t i = 0; i < axes.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j)
+      if (axes[j].key == axes[i].key)
+        throw ConfigError("--vary " + axes[i].key + ": the key is varied twice (give all its values in one --vary)");
+    total *= axes[i].values.size();
+    if (total > kMaxSweepCases)
+      throw ConfigError("--vary: the grid has more than " + std::to_string(kMaxSweepCases) +
+                        " cases; split the study into several sweeps");
+  }
   std::vector<SweepCase> cases;
   for (std::size_t i = 0; i < total; ++i) {
     SweepCase c;
@@ -138,25 +146,25 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
       }() + "): " + e.what());
     }
   }
-  prepare_output_folder(options.dir);
+  try {
+    prepare_output_folder(options.dir);
+  } catch (const std::runtime_error& e) {
+    throw ConfigError(std::string("-o ") + e.what());
+  }
 
-  // Finished earlier? A complete summary.json of the same configuration, not interrupted.
+  // Finished earlier? A complete folder (summary.json and the files it lists, at their sizes) of
+  // the same configuration, not interrupted.
   std::vector<std::size_t> todo;
   for (std::size_t i = 0; i < report.cases.size(); ++i) {
-    std::ifstream in(options.dir / report.cases[i].folder / "summary.json");
+    nlohmann::json j;
     bool finished = false;
-    if (in) {
-      try {
-        nlohmann::json j = nlohmann::json::parse(in);
-        const bool interrupted = j["failure"].is_object() && j["failure"]["kind"] == "interrupted";
-        if (!interrupted && j["config"] == configs[i].to_json()) {
-          report.results[i].summary = j;
-          report.results[i].status = SweepStatus::resumed;
-          if (j["failure"].is_object()) report.results[i].message = j["failure"]["message"].get<std::string>();
-          finished = true;
-        }
-      } catch (const std::exception&) {
-        finished = false;
+    if (complete_run_folder(options.dir / report.cases[i].folder, &j)) {
+      const bool interrupted = j["failure"].is_object() && j["failure"]["kind"] == "interrupted";
+      if (!interrupted && j["config"] == configs[i].to_json()) {
+        report.results[i].summary = j;
+        report.results[i].status = SweepStatus::resumed;
+        if (j["failure"].is_object()) report.results[i].message = j["failure"]["message"].get<std::string>();
+        finished = true;
       }
     }
     if (finished)

@@ -118,3 +118,49 @@ def test_concurrent_runs_equal_sequential_runs():
         assert without_wall_time(a.summary) == without_wall_time(b.summary)
         for name in a.history:
             assert np.array_equal(a.history[name], b.history[name]), name
+
+
+def test_override_keys_are_never_pasted_into_assignments():
+    # A key holding '=' or spaces is an unknown key, not a way to set another one (it ran at 3000 rpm).
+    with pytest.raises(rotbeam.ConfigError) as info:
+        rotbeam.impact(overrides={"hub.speed_rpm=3000 #": 550})
+    assert "unknown key" in str(info.value)
+
+
+def test_a_missing_file_is_also_a_file_not_found_error():
+    with pytest.raises(FileNotFoundError) as info:
+        rotbeam.run("/nonexistent/case.toml")
+    assert info.value.filename == "/nonexistent/case.toml"
+    assert isinstance(info.value, rotbeam.ConfigError)
+
+
+def test_empty_speeds_are_an_error_not_the_defaults():
+    with pytest.raises(rotbeam.ConfigError) as info:
+        rotbeam.modes(speeds_rpm=[])
+    assert "speeds_rpm" in str(info.value)
+
+
+def test_ctrl_c_stops_a_run_within_a_step():
+    # A 270° pass at 5 rpm takes half a minute; SIGINT after 0.5 s must raise KeyboardInterrupt at once.
+    import os
+    import signal
+    import threading
+    import time
+
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    t0 = time.time()
+    with pytest.raises(KeyboardInterrupt):
+        rotbeam.run(overrides={"hub.speed_rpm": 5, "simulation.end_angle_deg": 270, "output.interval_s": 1e30})
+    assert time.time() - t0 < 3.0
+
+
+def test_plot_names_a_damaged_file_in_one_line(tmp_path):
+    out = tmp_path / "run"
+    code, _, err = cli("run", "-o", str(out))
+    assert code == 0, err
+    with open(out / "history.csv", "r+") as f:
+        f.truncate(1000)
+    code, _, err = cli("plot", str(out))
+    assert code == 2
+    assert err.count("\n") == 1 and "history.csv" in err and "truncated" in err, err
