@@ -8,6 +8,7 @@
 #include <cmath>
 #include <iostream>
 #include <sstream>
+#include <unistd.h>
 
 namespace rotbeam::cli {
 
@@ -18,6 +19,7 @@ struct ConvergeOptions {
   std::string rtols, steps, modes;
   int jobs = 0;
   bool json = false;
+  bool quiet = false;
 };
 
 template <class T>
@@ -69,7 +71,13 @@ int run_converge(const ConvergeOptions& o) {
   }
   if (o.jobs < 0) throw ConfigError("--jobs " + std::to_string(o.jobs) + ": must be >= 0");
   install_interrupt_handlers();
-  const ConvergenceStudy study = run_convergence(config, ladder, o.jobs, &interrupt_token());
+  const bool show = !o.quiet && isatty(STDERR_FILENO);
+  const ConvergenceStudy study = run_convergence(config, ladder, o.jobs, &interrupt_token(), [show](const JobProgress& p) {
+    if (!show) return;
+    std::fprintf(stderr, "\r  %zu/%zu runs, %.1f s elapsed, ETA %.0f s   ", p.finished, p.total, p.elapsed_s, p.eta_s);
+    if (p.finished == p.total) std::fprintf(stderr, "\r%60s\r", "");
+    std::fflush(stderr);
+  });
   if (interrupt_token().stop_requested()) {
     print_error("convergence study interrupted");
     return kInterrupted;
@@ -115,6 +123,7 @@ Command add_converge_command(CLI::App& app) {
   sub->add_option("--modes", opts->modes, "Mode counts (default 3,5,8,12)");
   sub->add_option("--jobs", opts->jobs, "Threads (default: all cores)");
   sub->add_flag("--json", opts->json, "Print the study as JSON");
+  sub->add_flag("--quiet", opts->quiet, "No progress line on stderr (shown otherwise on a terminal)");
   return [opts] { return run_converge(*opts); };
 }
 
