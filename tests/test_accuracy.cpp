@@ -18,8 +18,8 @@ PassResult run(const std::vector<std::string>& sets, double interval = 1e30) {
 
 double ledger_residual(const PassSummary& s) {
   const double scale = std::max({std::abs(s.hub_work_j), std::abs(s.friction_work_j), std::abs(s.impact_loss_j),
-                                 std::abs(s.energy_change_j)});
-  return std::abs(s.energy_change_j - (s.hub_work_j + s.friction_work_j + s.impact_loss_j)) / scale;
+                                 std::abs(s.damping_work_j), std::abs(s.energy_change_j)});
+  return std::abs(s.energy_change_j - (s.hub_work_j + s.friction_work_j + s.damping_work_j + s.impact_loss_j)) / scale;
 }
 
 const std::vector<std::vector<std::string>> kCases = {

@@ -100,6 +100,12 @@ public:
                                        const Eigen::Ref<const Eigen::VectorXd>& qd,
                                        const Eigen::Ref<const Eigen::VectorXd>& qdd, BeamWorkspace& ws) const = 0;
 
+  /// The power the beam's own damping dissipates at q̇, q̇ᵀC q̇ ≥ 0 [W] (its generalised force −C q̇
+  /// is part of Ψ). The damping is internal: it exerts no moment about the hub (SPEC §11).
+  virtual double dissipation(const Eigen::Ref<const Eigen::VectorXd>& qd) const = 0;
+  /// True when the beam has damping (dissipation is not identically zero).
+  virtual bool damped() const = 0;
+
   /// θ(t) [rad] and its inverse [s].
   double theta(double t) const { return hub_motion().theta(t); }
   double time_at(double theta_rad) const { return hub_motion().time_at(theta_rad); }

@@ -1,6 +1,6 @@
 // Equations of motion of the foreshortening beam in free flight (SPEC §3, thesis eqns 4-60…4-82):
 //
-//   M(q) q̈ + Ψ(q, q̇) = Q,   Ψ = 2ω G(q) q̇ + D(q, q̇) q̇ + K_ω(q) q + K_b(q) q.
+//   M(q) q̈ + Ψ(q, q̇) = Q,   Ψ = 2ω G(q) q̇ + D(q, q̇) q̇ + K_ω(q) q + K_b(q) q (+ C q̇ when damped, SPEC §11).
 //
 // Units: q in metres, q̇ in m/s, forces (Ψ, Q) in newtons (generalised), M in kg.
 // Every function here works on a caller-owned workspace and allocates nothing.
@@ -21,6 +21,7 @@ struct ForeshorteningWorkspace : BeamWorkspace {
   Eigen::VectorXd foreshortening; // D(q, q̇) q̇ [N]
   Eigen::VectorXd centrifugal;    // K_ω(q) q [N]
   Eigen::VectorXd bending;        // K_b(q) q [N]
+  Eigen::VectorXd damping;        // C q̇ [N] (zero when undamped)
   // Contractions shared by the terms (see dynamics.cpp).
   std::vector<double> z;          // Z[i][(j,l)] = Σ_k q_k ∫ISP_ik ISP_jl
   Eigen::VectorXd q_pairs, v_pairs, p_contract, isp_cubic;

@@ -9,6 +9,7 @@
 #include "rotbeam/modal_integrals.hpp"
 
 #include <memory>
+#include <vector>
 
 namespace rotbeam {
 
@@ -21,6 +22,9 @@ struct BeamParameters {
   int modes = 5;                     // n
   double hub_radius_m = 0.0635;      // r_h
   double speed_rpm = 550.0;          // hub spin
+  // Modal damping ratios ζ_i of the linearised modes at the hub speed (SPEC §11): empty for none,
+  // one value for every mode, or n values (mode order: ascending frequency).
+  std::vector<double> damping_ratio;
 };
 
 class ForeshorteningBeam final : public BeamModel {
@@ -34,6 +38,10 @@ public:
   double bending_stiffness = 0;  // EI [N m²]
   double mass = 0;               // m = ρAL [kg]
   std::shared_ptr<const ModalIntegrals> integrals;
+  // Modal damping (SPEC §11): C = M0 Φ diag(2ζ_iΩ_i) Φᵀ M0 with Φ the mass-normalised linear modes
+  // at ω (M0 = m·1); the generalised force is −C q̇. Empty (0×0) when undamped.
+  Eigen::MatrixXd damping;       // C [kg/s]
+  bool damped() const override { return damping.size() > 0; }
 
   int modes() const override { return n; }
   HubMotion hub_motion() const override { return {omega, theta0}; }
@@ -54,10 +62,12 @@ public:
                      BeamWorkspace& ws) const override;
   double angular_momentum_rate(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qd,
                                const Eigen::Ref<const Eigen::VectorXd>& qdd, BeamWorkspace& ws) const override;
+  /// q̇ᵀC q̇ (0 when undamped).
+  double dissipation(const Eigen::Ref<const Eigen::VectorXd>& qd) const override;
 };
 
 /// Builds the model; θ0 = `theta0_rad` (default −π/2). Throws std::invalid_argument on
-/// non-physical values.
+/// non-physical values (and on damping of a mode without a positive frequency at ω).
 ForeshorteningBeam make_beam(const BeamParameters& p, double theta0_rad = kDefaultStartAngleDeg * M_PI / 180.0);
 
 }  // namespace rotbeam

@@ -56,8 +56,9 @@ struct PassSummary {
   double mean_normal_force_n = 0;
   double normal_impulse_n_s = 0;
   double friction_work_j = 0;
+  double damping_work_j = 0;       // −∫q̇ᵀCq̇ dt ≤ 0, the beam's damping (SPEC §11) [J]
   // The energy ledger in the inertial frame (SPEC §7, §11), works signed as energy given to the
-  // filament: hub_work_j + friction_work_j + impact_loss_j = energy_change_j.
+  // filament: hub_work_j + friction_work_j + damping_work_j + impact_loss_j = energy_change_j.
   double hub_work_j = 0;            // ω ∫τ dt including the impulsive part, from the angular-momentum balance [J]
   double hub_impulsive_work_j = 0;  // the hub's work during the impacts (the constraint moves) [J]
   double impact_loss_j = 0;         // the contact impulses' work on the tip, −(energy the impacts dissipate) ≤ 0 [J]

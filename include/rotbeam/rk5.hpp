@@ -70,6 +70,16 @@ public:
     return ButcherRk5::stages;
   }
 
+  /// h Σ b_s f(v_s) over the stage velocities v_s of the last step: the same RK5 quadrature of a
+  /// quantity f(q̇) as if ∫f dt were integrated with the state (used for the damping work).
+  template <class F>
+  double stage_quadrature(F&& f, double h) const {
+    double sum = 0.0;
+    for (int s = 0; s < ButcherRk5::stages; ++s)
+      if (ButcherRk5::b[s] != 0.0) sum += ButcherRk5::b[s] * f(kq_[s]);
+    return h * sum;
+  }
+
 private:
   std::array<Eigen::VectorXd, ButcherRk5::stages> kq_, kv_;
   Eigen::VectorXd stage_q_, stage_v_;

@@ -40,13 +40,15 @@ struct FilamentState {
   double slip = 0;         // s_t ∈ {−1, 0, +1}: the friction acts against it (contact only)
 };
 
-/// Contact integrals over a step and its largest normal force (zero in free flight).
+/// Integrals over a step: the contact's (zero in free flight), its largest normal force, and the
+/// beam's damping work (every phase).
 struct StepIntegrals {
   double work = 0;               // ∫ q̇ᵀQ_contact dt [J]
   double friction_work = 0;      // ∫ F_t V_t dt [J]
   double normal_impulse = 0;     // ∫ F_n dt [N s]
   double contact_moment = 0;     // ∫ (X_t F_Y − Y_t F_X) dt, the contact force's angular impulse about the hub [N m s]
   double peak_normal_force = 0;  // the largest F_n over the step, its interior included [N]
+  double damping_work = 0;       // −∫ q̇ᵀC q̇ dt ≤ 0, the work of the beam's damping (SPEC §11) [J]
 };
 
 enum class Root { none, gap_closes, multiplier_vanishes, slip_stops };

@@ -1,10 +1,11 @@
 // The adaptive event-driven scheme as a stepper (SPEC §6): Dormand–Prince 5(4) with dense output
 // from Boost.Odeint, roots located on the dense output, projection onto the constraint in contact.
 //
-// State x = (q, q̇, W, W_f, I_n, I_m): W = ∫q̇ᵀQ dt, W_f = ∫F_t V_t dt, I_n = ∫F_n dt and the contact
-// force's angular impulse I_m = ∫(X_t F_Y − Y_t F_X) dt are integrated with the motion (under the
-// same error control) and reset after every accepted contact step, so the energy audit and the
-// contact integrals are as accurate as the tolerance.
+// State x = (q, q̇, W, W_f, I_n, I_m, W_d): W = ∫q̇ᵀQ dt, W_f = ∫F_t V_t dt, I_n = ∫F_n dt, the contact
+// force's angular impulse I_m = ∫(X_t F_Y − Y_t F_X) dt and the damping work W_d = −∫q̇ᵀCq̇ dt are
+// integrated with the motion (under the same error control) and reset after every accepted contact
+// step and at every start of free flight, so the energy audit and the integrals are as accurate as
+// the tolerance.
 //   free flight  q̈ = −M⁻¹Ψ; root C = 0 (upward)
 //   contact      q̈ = M⁻¹(−Ψ + λ∇C + |λ|Q*) with λ from a λ + b|λ| = c at every evaluation;
 //                roots λ = 0 (upward) and s_t V_t = 0 (downward); before each step q and q̇ are
@@ -33,7 +34,8 @@ using State = std::vector<double>;
 using DenseStepper = odeint::result_of::make_dense_output<odeint::runge_kutta_dopri5<State>>::type;
 
 constexpr int kSamplesPerStep = 4;  // interior samples of the dense output per step
-constexpr int kIntegrals = 4;       // W, W_f, I_n, I_m after q and q̇ in the state
+constexpr int kIntegrals = 5;       // W, W_f, I_n, I_m, W_d after q and q̇ in the state
+constexpr int kDampingWork = 4;     // W_d's place among them
 constexpr int kBrentBits = 30;      // a maximum or minimum on the dense output to ~1e-9 of its bracket
 // An accepted step shorter than this fraction of the pass means the tolerance cannot be met in
 // double precision (at rtol ≥ 1e-13 the steps stay above ~1e-9 s for a pass of ~1e-2 s).
@@ -69,6 +71,7 @@ public:
     q_ = s.q;
     qd_ = s.qd;
     reinitialize();
+    free_damping_ = 0.0;
     // Just after a bounce or a separation the tip sits on the surface (C ≈ 0) and recedes, after a
     // λ = 0 separation only tangentially (C̈ = 0), so the dense output's error can put C a hair above
     // zero: a root there is not an impact (SPEC §5). The detector is armed once the tip has been
@@ -105,7 +108,7 @@ private:
     }
   }
   StepIntegrals integrals_of(const State& x) const {
-    return {x[2 * n_], x[2 * n_ + 1], x[2 * n_ + 2], x[2 * n_ + 3], 0.0};
+    return {x[2 * n_], x[2 * n_ + 1], x[2 * n_ + 2], x[2 * n_ + 3], 0.0, x[2 * n_ + kDampingWork]};
   }
   void store(FilamentState& s) const {
     s.t = t_;
@@ -122,6 +125,7 @@ private:
     if (phase_ == Phase::free) {
       acceleration(sys_.beam, q, qd, nullptr, *ws_, a);
       for (int k = 0; k < kIntegrals; ++k) dxdt[2 * n_ + k] = 0.0;
+      if (damped_) dxdt[2 * n_ + kDampingWork] = -sys_.beam.dissipation(qd);
       return;
     }
     const AccelerationMultiplier am =
@@ -140,6 +144,7 @@ private:
     dxdt[2 * n_ + 1] = load.slip_power;
     dxdt[2 * n_ + 2] = load.normal_force;
     dxdt[2 * n_ + 3] = load.moment;
+    dxdt[2 * n_ + kDampingWork] = damped_ ? -sys_.beam.dissipation(qd) : 0.0;
   }
 
   // ---- root functions on the dense output ---------------------------------------------------
@@ -254,12 +259,16 @@ private:
       unpack(xs_);
       t_ = root;
       store(s);
+      out.integrals.damping_work = xs_[2 * n_ + kDampingWork] - free_damping_;
       out.status = StepStatus::root;
       out.root = Root::gap_closes;
       return out;
     }
     if (te < tb) stepper_.calc_state(te, xs_);
-    unpack(te < tb ? xs_ : stepper_.current_state());
+    const State& xe = te < tb ? xs_ : stepper_.current_state();
+    unpack(xe);
+    out.integrals.damping_work = xe[2 * n_ + kDampingWork] - free_damping_;
+    free_damping_ = xe[2 * n_ + kDampingWork];
     if (!q_.allFinite() || !qd_.allFinite()) return failed(FailureKind::non_finite, "the free-flight state became non-finite");
     t_ = te;
     const double c_now = gap(sys_.beam, sys_.surface, t_, q_);
@@ -415,6 +424,8 @@ private:
   Phase phase_ = Phase::free;
   double t_ = 0, dt_ = 1e-7, slip_ = 0;
   double load_start_ = 0;  // F_n at the (projected) start of the current contact step [N]
+  const bool damped_ = sys_.beam.damped();
+  double free_damping_ = 0;  // W_d of the free flight at the last reported point [J]
   // The free-flight gap detector (see begin_free).
   double eps_ = 0, offset_ = 0, g_prev_ = 0;
   bool armed_ = false;

@@ -7,6 +7,8 @@
 //                 than the tolerance between iterates (capped); step h_contact, or h_fine while
 //                 0 < |λ| < fine_below_n; contact integrals by the trapezoidal rule, from λ = 0 at
 //                 the episode's start (rotate.m resets the multiplier there)
+//   damping work  −∫q̇ᵀCq̇ dt by the RK5 step's own quadrature in free flight and by the trapezoidal
+//                 rule over contact steps (SPEC §11)
 //   separation    λ > 0: linear interpolation to λ = 0 over the last step (Step 4b); then one free
 //                 step of h_contact and, while the tip is still at or beyond the surface, free steps
 //                 of h_free until it is clear (Step 5a, the tip-distance rule)
@@ -42,7 +44,8 @@ public:
         ws_(system.beam.make_workspace()),
         tip_(n_),
         rk_(n_),
-        q1_(n_), qd1_(n_), xp_(n_), up_(n_), xn_(n_), un_(n_), x2_(n_), qstar_(n_), force_(n_), minv_(n_) {}
+        q1_(n_), qd1_(n_), xp_(n_), up_(n_), xn_(n_), un_(n_), x2_(n_), qstar_(n_), force_(n_), minv_(n_),
+        damped_(system.beam.damped()) {}
 
   StepperTraits traits() const override { return {Scheme::thesis, false, false}; }
 
@@ -94,10 +97,24 @@ private:
     stats_.rhs_evaluations += rk_.step(accel, s.t, s.q, s.qd, h, s.q, s.qd);
     ++stats_.steps;
     s.t += h;
+    step_damping_ += free_damping_work(h);
     return gap(sys_.beam, sys_.surface, s.t, s.q);
   }
 
+  // The damping work of the last RK5 step of free flight [J].
+  double free_damping_work(double h) const {
+    if (!damped_) return 0.0;
+    return -rk_.stage_quadrature([this](const Eigen::VectorXd& v) { return sys_.beam.dissipation(v); }, h);
+  }
+
   StepOutcome free_step(FilamentState& s, double t_stop) {
+    step_damping_ = 0.0;
+    StepOutcome out = free_step_body(s, t_stop);
+    out.integrals.damping_work = step_damping_;
+    return out;
+  }
+
+  StepOutcome free_step_body(FilamentState& s, double t_stop) {
     StepOutcome out;
     if (too_small(opt_.free_step_s, t_stop)) return step_too_small(s.t, opt_.free_step_s, t_stop);
     if (too_small(opt_.contact_step_s, t_stop)) return step_too_small(s.t, opt_.contact_step_s, t_stop);
@@ -152,11 +169,13 @@ private:
       const auto br = boost::math::tools::toms748_solve(gap_after, 0.0, h, c0, c1, tol, max_iter);
       const double tau = br.second;  // the end with C >= 0
       stats_.rhs_evaluations += rk_.step(accel, s.t, s.q, s.qd, tau, s.q, s.qd);
+      step_damping_ += free_damping_work(tau);
       s.t += tau;
       out.status = StepStatus::root;
       out.root = Root::gap_closes;
       return out;
     }
+    step_damping_ += free_damping_work(h);
     s.q.swap(q1_);
     s.qd.swap(qd1_);
     s.t = t_next;
@@ -253,6 +272,7 @@ private:
       tip_kinematics(sys_.beam, sys_.surface, tn, xn_, un_, tip_);
       out.load = contact_load(friction, tip_, un_, lambda_n, s.slip, force_);
       out.integrals = trapezoid(load_prev_, out.load, tn - s.t);
+      out.integrals.damping_work = contact_damping_work(s.qd, un_, tn - s.t);
       s.q = xn_;
       s.qd = un_;
       s.t = tn;
@@ -267,12 +287,19 @@ private:
     out.integrals = trapezoid(load_prev_, ContactLoad{}, ts - s.t);
     x2_ = s.q + f * (xn_ - s.q);
     un_ = s.qd + f * (un_ - s.qd);
+    out.integrals.damping_work = contact_damping_work(s.qd, un_, ts - s.t);
     s.q = x2_;
     s.qd = un_;
     s.t = ts;
     out.status = StepStatus::root;
     out.root = Root::multiplier_vanishes;
     return out;
+  }
+
+  // The damping work over a contact step by the trapezoidal rule [J].
+  double contact_damping_work(const Eigen::VectorXd& qd0, const Eigen::VectorXd& qd1, double dt) const {
+    if (!damped_) return 0.0;
+    return -0.5 * (sys_.beam.dissipation(qd0) + sys_.beam.dissipation(qd1)) * dt;
   }
 
   static StepOutcome failed(FailureKind kind, double t, std::string message) {
@@ -297,6 +324,8 @@ private:
   double deepest_ = 0, clearing_t0_ = 0; // Step 5a bookkeeping
   double lambda_pred_ = 0, lambda_prev_ = 0;
   ContactLoad load_prev_;
+  const bool damped_;          // the beam dissipates (its damping work is computed)
+  double step_damping_ = 0;    // damping work of the current free step [J]
 };
 
 }  // namespace

@@ -91,10 +91,6 @@ double number_in(const std::string& key, const toml::node& node, double lo, doub
   return v;
 }
 
-double positive(const std::string& key, const toml::node& node) {
-  return number_in(key, node, 0.0, INFINITY, true, true);
-}
-
 std::string one_of(const std::string& key, const toml::node& node, std::initializer_list<const char*> choices) {
   std::string list;
   for (const char* c : choices) list += (list.empty() ? "\"" : ", \"") + std::string(c) + "\"";
@@ -139,6 +135,7 @@ struct Parsed {
   const toml::node* modes_node = nullptr;
   const toml::node* depth_node = nullptr;
   const toml::node* end_angle_node = nullptr;
+  const toml::node* damping_node = nullptr;
 };
 
 using Setter = std::function<void(Parsed&, const std::string&, const toml::node&)>;
@@ -155,6 +152,20 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
        [](Parsed& p, auto& k, auto& n) {
          p.config.beam.modes = integer_in(k, n, 1, kMaxModes);
          p.modes_node = &n;
+       }},
+      {"beam.damping_ratio",
+       [](Parsed& p, auto& k, auto& n) {
+         // One ratio for every mode, or one per mode; up to 10 (far past critical damping, 1).
+         if (n.is_number()) {
+           p.config.beam.damping_ratio = {number_in(k, n, 0.0, 10.0, false, false)};
+         } else if (n.is_array()) {
+           p.config.beam.damping_ratio = number_array(k, n, 10.0);
+           for (double z : p.config.beam.damping_ratio)
+             if (z < 0.0) fail(k, n, "must hold numbers in [0, 10]");
+         } else {
+           fail(k, n, "must be a number or an array of beam.modes numbers in [0, 10]");
+         }
+         p.damping_node = &n;
        }},
       {"hub.radius_m", [](Parsed& p, auto& k, auto& n) { p.config.beam.hub_radius_m = number_in(k, n, 0.0, 100.0, false, false); }},
       {"hub.speed_rpm", [](Parsed& p, auto& k, auto& n) { p.config.beam.speed_rpm = number_in(k, n, 0.0, 1e6, true, false); }},
@@ -342,6 +353,10 @@ Config validate(toml::table& root) {
     if (static_cast<int>(v.size()) != n)
       fail(key, *node, "must have beam.modes = " + std::to_string(n) + " values, got " + std::to_string(v.size()));
   };
+  if (p.damping_node && c.beam.damping_ratio.size() != 1 && static_cast<int>(c.beam.damping_ratio.size()) != n)
+    fail("beam.damping_ratio", *p.damping_node,
+         "must be one number or beam.modes = " + std::to_string(n) + " values, got " +
+             std::to_string(c.beam.damping_ratio.size()));
   check_length(ini.modal_velocity, p.velocity_node, "initial.modal_velocity");
   check_length(ini.modal_displacement, p.displacement_node, "initial.modal_displacement");
   const bool disturbed = std::any_of(ini.modal_velocity.begin(), ini.modal_velocity.end(), [](double v) { return v != 0.0; }) ||
@@ -359,7 +374,13 @@ Config validate(toml::table& root) {
     throw ConfigError("beam.diameter_m = " + format_number(c.beam.diameter_m) + ": " + what);
   }
   // The start the configuration describes must be possible (checked through the beam and surface).
-  const ForeshorteningBeam beam = make_beam(c.beam);
+  ForeshorteningBeam beam;
+  try {
+    beam = make_beam(c.beam);
+  } catch (const std::invalid_argument& e) {
+    if (p.damping_node) fail("beam.damping_ratio", *p.damping_node, e.what());
+    throw ConfigError(e.what());
+  }
   const std::shared_ptr<const Surface> surface = make_surface(c.surface, beam);
   if (ini.start == "flexible") {
     // A flexible start must begin clear of the surface.
@@ -394,7 +415,10 @@ nlohmann::json Config::to_json() const {
                {"diameter_m", beam.diameter_m},
                {"density_kg_m3", beam.density_kg_m3},
                {"youngs_modulus_pa", beam.youngs_modulus_pa},
-               {"modes", beam.modes}};
+               {"modes", beam.modes},
+               {"damping_ratio", beam.damping_ratio.empty() ? nlohmann::json(0.0)
+                                 : beam.damping_ratio.size() == 1 ? nlohmann::json(beam.damping_ratio[0])
+                                                                  : nlohmann::json(beam.damping_ratio)}};
   j["hub"] = {{"radius_m", beam.hub_radius_m}, {"speed_rpm", beam.speed_rpm}};
   j["surface"] = {{"depth_fraction", surface.depth_fraction}, {"friction", contact.friction.mu}};
   j["impact"] = {{"restitution_cap", impact.cap},

@@ -116,6 +116,7 @@ nlohmann::json summary_json(const PassResult& result, const Config& config, cons
   j["mean_normal_force_n"] = s.mean_normal_force_n;
   j["normal_impulse_n_s"] = s.normal_impulse_n_s;
   j["friction_work_j"] = s.friction_work_j;
+  j["damping_work_j"] = s.damping_work_j;
   j["hub_work_j"] = s.hub_work_j;
   j["hub_impulsive_work_j"] = s.hub_impulsive_work_j;
   j["impact_loss_j"] = s.impact_loss_j;

@@ -11,6 +11,7 @@ ForeshorteningWorkspace::ForeshorteningWorkspace(int size)
       foreshortening(size),
       centrifugal(size),
       bending(size),
+      damping(Eigen::VectorXd::Zero(size)),
       z(static_cast<std::size_t>(size) * size * (size + 1) / 2),
       q_pairs(size * (size + 1) / 2),
       v_pairs(size * (size + 1) / 2),
@@ -168,6 +169,10 @@ void evaluate_dynamics(const ForeshorteningBeam& model, const Eigen::Ref<const E
     ws.mass_llt.compute(ws.mass);
     force_kernel<N>(model, q.data(), qd.data(), ws);
   });
+  if (model.damped()) {
+    ws.damping.noalias() = model.damping * qd;
+    ws.psi += ws.damping;
+  }
 }
 
 Eigen::MatrixXd linear_stiffness(const ForeshorteningBeam& model) {

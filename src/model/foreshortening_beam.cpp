@@ -2,8 +2,10 @@
 
 #include "rotbeam/dynamics.hpp"
 #include "rotbeam/energy.hpp"
+#include "rotbeam/modal_analysis.hpp"
 #include "rotbeam/detail/quadratic_form.hpp"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <stdexcept>
@@ -68,6 +70,36 @@ double ForeshorteningBeam::angular_momentum_rate(const Eigen::Ref<const Eigen::V
   return rotbeam::angular_momentum_rate(*this, q, qd, qdd, own(ws));
 }
 
+double ForeshorteningBeam::dissipation(const Eigen::Ref<const Eigen::VectorXd>& qd) const {
+  return damped() ? detail::quadratic_form(damping, qd) : 0.0;
+}
+
+namespace {
+// C = M0 Φ diag(2ζ_iΩ_i) Φᵀ M0 with Φ mass-normalised (SPEC §11). M0 = m·1, so with the unit
+// eigenvectors V of K/m (Φ = V/√m) this is m V diag(2ζ_iΩ_i) Vᵀ.
+Eigen::MatrixXd modal_damping(const ForeshorteningBeam& m, const std::vector<double>& zeta) {
+  if (zeta.empty() || std::all_of(zeta.begin(), zeta.end(), [](double z) { return z == 0.0; }))
+    return Eigen::MatrixXd();
+  if (zeta.size() != 1 && static_cast<int>(zeta.size()) != m.n)
+    throw std::invalid_argument("damping ratio must have 1 or " + std::to_string(m.n) + " values, got " +
+                                std::to_string(zeta.size()));
+  const ModalAnalysis modes = modal_analysis(m);
+  Eigen::VectorXd rate(m.n);  // 2ζ_iΩ_i [1/s]
+  for (int i = 0; i < m.n; ++i) {
+    const double z = zeta.size() == 1 ? zeta[0] : zeta[static_cast<std::size_t>(i)];
+    if (!(z >= 0.0) || !std::isfinite(z))
+      throw std::invalid_argument("damping ratio must be >= 0 and finite, got " + std::to_string(z));
+    const double f = modes.frequencies_hz[i];
+    if (z > 0.0 && !(f > 0.0))
+      throw std::invalid_argument("mode " + std::to_string(i + 1) +
+                                  " has no positive frequency at this speed, so it cannot be given a damping ratio");
+    rate[i] = z > 0.0 ? 2.0 * z * 2.0 * M_PI * f : 0.0;
+  }
+  Eigen::MatrixXd c = m.mass * modes.shapes * rate.asDiagonal() * modes.shapes.transpose();
+  return 0.5 * (c + c.transpose());
+}
+}  // namespace
+
 ForeshorteningBeam make_beam(const BeamParameters& p, double theta0_rad) {
   auto positive = [](double v, const char* what) {
     if (!(v > 0.0) || !std::isfinite(v))
@@ -95,6 +127,7 @@ ForeshorteningBeam make_beam(const BeamParameters& p, double theta0_rad) {
   m.bending_stiffness = p.youngs_modulus_pa * inertia;
   m.mass = m.mass_per_length * p.length_m;
   m.integrals = modal_integrals(p.modes);
+  m.damping = modal_damping(m, p.damping_ratio);
   return m;
 }
 

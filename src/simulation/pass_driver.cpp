@@ -104,11 +104,11 @@ void PassDriver::free_flight() {
     if (o.status == StepStatus::failed) return fail(o.failure->kind, o.failure->t, o.failure->message, Phase::free);
     if (o.status == StepStatus::root) {  // the gap closed: a touch
       instant_transitions_ = (state_.t - t_enter < kInstant) ? instant_transitions_ + 1 : 0;
-      rec_.accept(state_.t, state_.q, state_.qd, Phase::free, {}, {}, true);
+      rec_.accept(state_.t, state_.q, state_.qd, Phase::free, {}, o.integrals, true);
       touch();
       return;
     }
-    rec_.accept(state_.t, state_.q, state_.qd, Phase::free, {}, {});
+    rec_.accept(state_.t, state_.q, state_.qd, Phase::free, {}, o.integrals);
     report_progress();
     if (o.note) {
       rec_.event(o.note->kind, state_.t, state_.q, o.note->detail);

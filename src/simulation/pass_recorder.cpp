@@ -160,6 +160,7 @@ bool PassRecorder::impacts_exhausted(double t) {
 void PassRecorder::accept(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Phase phase,
                           const ContactLoad& load, const StepIntegrals& in, bool force_sample) {
   PassSummary& s = result_.summary;
+  s.damping_work_j += in.damping_work;
   if (phase != Phase::free) {
     s.contact_time_s += t - last_t_;
     normal_time_integral_ += in.normal_impulse;
@@ -288,7 +289,7 @@ void PassRecorder::finish(double t, const Eigen::VectorXd& q, const Eigen::Vecto
   s.mean_normal_force_n = s.contact_time_s > 0 ? normal_time_integral_ / s.contact_time_s : 0.0;
   const EnergyTerms e = system_.beam.energy(q, qd, *ws_);
   energy_scale_ = std::max({energy_scale_, std::abs(e.jacobi), e.t2});
-  s.energy_audit_residual = std::abs(e.jacobi - h_start_ - work_ - impact_jumps_) / energy_scale_;
+  s.energy_audit_residual = std::abs(e.jacobi - h_start_ - work_ - s.damping_work_j - impact_jumps_) / energy_scale_;
   // The hub's work from the angular-momentum balance: dH_z/dt = τ + (R × F)_z, with impulses at impacts.
   s.hub_work_j = system_.beam.hub_motion().omega *
                  (e.angular_momentum - momentum_start_ - contact_moment_ - impulse_moment_);

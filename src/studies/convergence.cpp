@@ -110,7 +110,7 @@ ConvergenceStudy run_convergence(const Config& base, const ConvergenceLadder& la
   run_jobs(
       configs.size(),
       [&](std::size_t i) {
-        const PassResult result = run_case(build_case(configs[i]), {nullptr, stop});
+        const PassResult result = run_case(build_case(configs[i]), {nullptr, stop, {}});
         study.runs[i].summary = result.summary;
         if (result.failure)
           study.runs[i].failure = std::string(failure_name(result.failure->kind)) + ": " + result.failure->message;

@@ -200,7 +200,7 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
         try {
           const Case c = build_case(configs[i]);
           PassFiles files(options.dir / report.cases[i].folder, configs[i].beam.modes);
-          const PassResult pass = run_case(c, {&files, options.stop});
+          const PassResult pass = run_case(c, {&files, options.stop, {}});
           files.commit(pass, configs[i], *c.surface);
           res.summary = summary_json(pass, configs[i], *c.surface);
           if (!pass.failure)
