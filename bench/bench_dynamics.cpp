@@ -69,7 +69,7 @@ void BM_FreePass(benchmark::State& state) {
     const auto stepper = make_thesis_stepper({model, far, {}}, opt);
     FilamentState s(n);
     s.qd[0] = 2.0;
-    stepper->begin_free(s, false);
+    stepper->begin_free(s, FreeStart::pass_start);
     while (s.t < t_end) stepper->step(s, t_end);
     steps = stepper->statistics().steps;
     rhs = stepper->statistics().rhs_evaluations;

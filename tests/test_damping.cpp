@@ -45,7 +45,7 @@ FreeRun free_flight(const ForeshorteningBeam& beam, const Eigen::VectorXd& q0, c
   FilamentState s(beam.n);
   s.q = q0;
   s.qd = qd0;
-  stepper->begin_free(s, false);
+  stepper->begin_free(s, FreeStart::pass_start);
   FreeRun r;
   while (s.t < t_end) {
     const StepOutcome o = stepper->step(s, t_end);

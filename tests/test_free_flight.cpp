@@ -42,7 +42,7 @@ FreeFlight free_flight(const ForeshorteningBeam& model, const Surface& surface, 
   FilamentState s(model.n);
   s.q = q0;
   s.qd = v0;
-  stepper->begin_free(s, false);
+  stepper->begin_free(s, FreeStart::pass_start);
   FreeFlight r;
   r.min_gap = gap(model, surface, s.t, s.q);
   while (s.t < t_end) {

@@ -160,8 +160,8 @@ int run_reproduce(const ReproduceOptions& o) {
       jobs.size(),
       [&](std::size_t i) {
         const rotbeam::Case c = build_case(jobs[i].config);
-        PassFiles files(jobs[i].folder, jobs[i].config.beam.modes);
-        const PassResult r = run_case(c, {&files, &interrupt_token()});
+        PassFiles files(jobs[i].folder, jobs[i].config.beam.modes, jobs[i].config.simulation.history_revolutions);
+        const PassResult r = run_case(c, {&files, &interrupt_token(), {}});
         files.commit(r, jobs[i].config, *c.surface);
         if (!r.failure) return;
         std::lock_guard<std::mutex> lock(mutex);

@@ -43,8 +43,16 @@ void print_summary(const Config& config, const PassResult& r, const std::string&
   std::cout << "  energy audit residual " << s.energy_audit_residual << "\n";
   std::cout << "  steps                 " << s.steps << " (" << s.rhs_evaluations << " RHS evaluations), "
             << fixed(s.wall_time_s, 3) << " s\n";
+  if (config.simulation.revolutions > 0) {
+    std::cout << "  revolutions           " << s.revolutions << " complete of " << config.simulation.revolutions << "\n";
+    if (std::isfinite(s.mean_hub_torque_n_m))
+      std::cout << "  last revolution       mean hub torque " << s.mean_hub_torque_n_m * 1e3 << " mN m, mean power "
+                << s.mean_hub_power_w * 1e3 << " mW\n";
+    if (s.steady_state.sought) std::cout << "  steady state          " << s.steady_state.note << "\n";
+  }
   for (const std::string& w : s.warnings) std::cout << "  warning: " << w << "\n";
-  std::cout << "  wrote " << (std::filesystem::path(dir) / "history.csv").string() << ", events.csv, summary.json\n";
+  std::cout << "  wrote " << (std::filesystem::path(dir) / "history.csv").string() << ", events.csv, "
+            << (config.simulation.revolutions > 0 ? "revolutions.csv, " : "") << "summary.json\n";
 }
 
 int run_pass_command(const RunOptions& o) {
@@ -53,7 +61,7 @@ int run_pass_command(const RunOptions& o) {
   const Case c = build_case(config);  // before the folder is touched: bad input leaves nothing behind
   std::unique_ptr<PassFiles> files_owner;
   try {
-    files_owner = std::make_unique<PassFiles>(o.output_dir, config.beam.modes);
+    files_owner = std::make_unique<PassFiles>(o.output_dir, config.beam.modes, config.simulation.history_revolutions);
   } catch (const std::exception& e) {
     throw ConfigError(std::string("-o ") + e.what());
   }

@@ -43,6 +43,59 @@ struct PassEvent {
 
 struct ContactInterval {
   double t_start = 0, t_end = 0, theta_start = 0, theta_end = 0, y_start = 0, y_end = 0;
+  int revolution = 1;  // the revolution it began in (SPEC §11: revolution k spans [θ0 + 360°(k − 1), θ0 + 360°k))
+};
+
+/// One revolution of a run over many (SPEC §11, revolutions.csv). Works are signed as energy given
+/// to the filament; per revolution hub_work_j + friction_work_j + damping_work_j + impact_loss_j =
+/// energy_change_j (ledger_residual_j is the difference). Angles are relative to the revolution,
+/// in (−180°, 180°], 0° where the undeformed filament points at the surface's deepest point.
+struct RevolutionRecord {
+  int revolution = 0;     // 1, 2, …
+  bool complete = false;  // false for a revolution cut short by the end angle, a failure or a stop
+  double t_start = 0, t_end = 0;  // [s]
+  int impacts = 0;
+  int contact_episodes = 0;             // episodes that ended in this revolution
+  double first_impact_deg = NAN;        // NaN: no impact
+  double last_separation_deg = NAN;     // the last impact or contact end; NaN: none
+  double normal_impulse_n_s = 0;
+  double friction_work_j = 0;
+  double damping_work_j = 0;
+  double impact_loss_j = 0;
+  double hub_work_j = 0;
+  double energy_change_j = 0;
+  double mean_hub_torque_n_m = 0;       // hub work / Δθ
+  double mean_hub_power_w = 0;          // hub work / Δt
+  double max_tip_deflection_ratio = 0;
+  double contact_time_s = 0;
+  double peak_normal_force_n = 0;
+  double ledger_residual_j = 0;         // hub + friction + damping + impact loss − energy change
+  // The relative change of the section state z = (q/L, q̇/(ωL)) at the revolution's end from the
+  // previous section: ‖Δz‖ / max(‖z_k‖, ‖z_(k−1)‖) (0 when both are 0); NaN for an incomplete one.
+  double section_distance = NAN;
+  Eigen::VectorXd q, qd;  // the state at the revolution's end [m], [m/s]
+};
+
+/// A Floquet multiplier of the one-revolution map (an eigenvalue of its Jacobian at the section).
+struct Multiplier {
+  double re = 0, im = 0;
+  double magnitude() const { return std::hypot(re, im); }
+};
+
+/// The search for the periodic steady state (simulation.until_steady, SPEC §11).
+struct SteadyState {
+  bool sought = false;                 // simulation.until_steady
+  bool reached = false;
+  int after_revolutions = 0;           // revolutions run when it was reached (0: not reached)
+  int period_revolutions = 0;          // the orbit repeats every this many revolutions (1 … 4; 0: not reached)
+  double tolerance = 0;
+  SteadyMethod method = SteadyMethod::brute_force;
+  std::vector<Multiplier> multipliers; // largest magnitude first; empty when not computed
+  double final_distance = NAN;         // the section distance when the search ended
+  int newton_iterations = 0;           // shooting
+  int map_evaluations = 0;             // one-revolution runs of the shooting and the multipliers
+  int event_sequence_changes = 0;      // evaluations whose impacts or episodes differed from the orbit's
+  std::string note;                    // how the search ended, in words
 };
 
 struct PassSummary {
@@ -72,7 +125,12 @@ struct PassSummary {
   double wall_time_s = 0;
   Scheme scheme = Scheme::adaptive;
   std::vector<std::string> warnings;
-  std::vector<ContactInterval> contact_intervals;
+  std::vector<ContactInterval> contact_intervals;  // of the revolutions kept (output.history_revolutions)
+  // Many revolutions (simulation.revolutions > 0).
+  int revolutions = 0;                   // complete revolutions run
+  double mean_hub_torque_n_m = NAN;      // of the last complete revolution
+  double mean_hub_power_w = NAN;
+  SteadyState steady_state;
 };
 
 /// Receives the history rows and events of a pass as they are produced, so that memory stays
@@ -82,12 +140,17 @@ public:
   virtual ~PassSink() = default;
   virtual void row(const HistoryRow& row) = 0;
   virtual void event(const PassEvent& event) = 0;
+  /// A revolution ended (its rows and events came before). Runs of one pass never call it.
+  virtual void revolution(const RevolutionRecord&) {}
 };
 
 struct PassResult {
   std::vector<HistoryRow> history;  // kept only when the pass ran without a sink
   std::vector<PassEvent> events;    // likewise
   PassSummary summary;
+  std::vector<RevolutionRecord> revolutions;  // one per revolution (runs over many)
+  Eigen::VectorXd final_q, final_qd;          // the state where the run ended [m], [m/s]
+  double final_t = 0;                         // [s]
   std::optional<NumericalFailure> failure;
 };
 
@@ -96,6 +159,8 @@ struct PassProgress {
   double theta_deg = 0, start_deg = 0, end_deg = 0;  // current, initial and final beam angle
   double elapsed_s = 0;                              // wall time so far
   long steps = 0;
+  int revolution = 0, revolutions = 0;  // the revolution under way (1, 2, …) and the run's number (0: one pass)
+  double section_distance = NAN;        // the last complete revolution's section distance
 };
 
 /// How a pass is watched: where its rows and events go (nullptr: into PassResult), the token that

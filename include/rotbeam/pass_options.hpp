@@ -11,9 +11,25 @@ enum class Scheme {
 };
 const char* scheme_name(Scheme s);
 
+/// How a run looks for the periodic steady state (SPEC §12).
+enum class SteadyMethod {
+  brute_force,  // revolution after revolution until the section state stops changing
+  shooting,     // Newton on the one-revolution map at the section (studies layer, steady_state.hpp)
+};
+const char* steady_method_name(SteadyMethod m);
+
+/// simulation.revolutions when simulation.until_steady is set without it: the cap on the search.
+inline constexpr int kDefaultSteadyRevolutionCap = 1000;
+
 struct PassOptions {
   Scheme scheme = Scheme::adaptive;   // simulation.scheme
-  double end_angle_deg = 90.0;        // simulation.end_angle_deg: stop angle θ [deg]
+  double end_angle_deg = 90.0;        // simulation.end_angle_deg: stop angle θ [deg] (one pass)
+  // Revolutions (SPEC §12): with revolutions > 0 the run ends after that many whole turns from θ0
+  // (end_angle_deg is then θ0 + 360·revolutions) and the section θ = θ0 (mod 360°) closes each one.
+  int revolutions = 0;                // simulation.revolutions: 0 = one pass to end_angle_deg
+  bool until_steady = false;          // simulation.until_steady: stop once the section state repeats
+  double steady_tolerance = 1e-8;     // simulation.steady_tolerance: relative section distance
+  SteadyMethod steady_method = SteadyMethod::brute_force;  // simulation.steady_method
   // Thesis scheme (thesis §4.6–4.7).
   double free_step_s = 1e-6;          // simulation.free_step_s: RK5 step in free flight [s]
   double contact_step_s = 1e-7;       // simulation.contact_step_s: predictor–corrector step [s]
@@ -33,6 +49,7 @@ struct PassOptions {
   bool deflection_limit_is_error = false;  // simulation.deflection_limit_is_error: stop with `validity`
   // Recording.
   double output_interval_s = 1e-5;    // output.interval_s: history sampling (events always recorded exactly)
+  int history_revolutions = 1;        // output.history_revolutions: history and events of the last K revolutions (0: all)
 };
 
 }  // namespace rotbeam

@@ -22,6 +22,11 @@ std::string events_header();
 void append_history_line(std::string& out, const HistoryRow& row);
 /// One events.csv line (with its newline) appended to `out`.
 void append_event_line(std::string& out, const PassEvent& event);
+/// Column names of revolutions.csv for n modes (runs over many revolutions, SPEC §11).
+std::string revolutions_header(int n);
+/// One revolutions.csv line (with its newline) appended to `out`.
+void append_revolution_line(std::string& out, const RevolutionRecord& record);
+std::string revolutions_csv(const PassResult& result, int n);
 /// The whole files of an in-memory result.
 std::string history_csv(const PassResult& result, int n);
 std::string events_csv(const PassResult& result);
@@ -42,13 +47,16 @@ void prepare_output_folder(const std::filesystem::path& dir);
 /// without commit removes its own. Throws std::runtime_error naming the path on I/O errors.
 class PassFiles final : public PassSink {
 public:
-  PassFiles(const std::filesystem::path& dir, int n);
+  /// `history_revolutions` (output.history_revolutions): over many revolutions, history.csv and
+  /// events.csv keep the last that many revolutions (0: all); revolutions.csv keeps every one.
+  PassFiles(const std::filesystem::path& dir, int n, int history_revolutions = 0);
   ~PassFiles() override;
   PassFiles(const PassFiles&) = delete;
   PassFiles& operator=(const PassFiles&) = delete;
 
   void row(const HistoryRow& row) override;
   void event(const PassEvent& event) override;
+  void revolution(const RevolutionRecord& record) override;
   /// Finishes the files of `result` (which ran with this writer as its sink).
   void commit(const PassResult& result, const Config& config, const Surface& surface);
 
@@ -58,13 +66,28 @@ private:
     std::FILE* file = nullptr;
     std::string buffer;
     std::uintmax_t bytes = 0;
+    std::string header;
+    // Over many revolutions with a window: the finished revolutions' pieces kept, oldest first
+    // (the first may start with the header).
+    std::vector<std::filesystem::path> pieces;
+    bool first_piece_has_header = true;
   };
   void open(Stream& s, const std::string& name, const std::string& header);
   void flush(Stream& s);
   void close(Stream& s);
+  // Ends the current piece of `s` and starts the next (windowed history), dropping pieces beyond the window.
+  void rotate(Stream& s);
+  // Joins the kept pieces and the current one into the final file.
+  void assemble(Stream& s);
 
   std::filesystem::path dir_;
-  Stream history_, events_;
+  int n_ = 0;
+  int history_revolutions_ = 0;
+  long piece_count_ = 0;
+  bool rotate_pending_ = false;
+  double rotate_after_t_ = 0;
+  void start_next_piece();
+  Stream history_, events_, revolutions_;
   int lock_fd_ = -1;
   std::filesystem::path lock_path_;
   bool committed_ = false;

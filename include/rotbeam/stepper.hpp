@@ -94,12 +94,21 @@ struct StepperTraits {
   bool lifts_off_on_positive_multiplier;
 };
 
+/// How free flight begins. A pass start (the start of a run, or a revolution's section) depends on
+/// the state alone: the adaptive step starts afresh and the thesis's grid starts there, so that one
+/// revolution is the same map of the section state wherever it runs (SPEC §11).
+enum class FreeStart {
+  pass_start,  // the start of a run or a revolution
+  rebound,     // after an impact that bounces
+  separation,  // after λ = 0 or a lift-off (the thesis's Step 4b–5a)
+};
+
 class Stepper {
 public:
   virtual ~Stepper() = default;
   virtual StepperTraits traits() const = 0;
-  /// Free flight begins at `state` (the start, a bounce, a separation or a lift-off).
-  virtual void begin_free(const FilamentState& state, bool after_separation) = 0;
+  /// Free flight begins at `state`.
+  virtual void begin_free(const FilamentState& state, FreeStart start) = 0;
   /// Sustained contact begins at `state` with the acceleration-level multiplier λ0.
   virtual void begin_contact(const FilamentState& state, double lambda0) = 0;
   /// One step of the current phase from `state`, never beyond t_stop.

@@ -24,6 +24,9 @@ public:
   /// The first beam angle θ ≥ θ_from [rad] at which a point at distance `radius` from the hub centre
   /// on the undeformed filament reaches the surface while approaching it, or NaN if it never does.
   virtual double first_contact_angle(double radius, double theta_from) const = 0;
+  /// The beam angle [rad] (mod 2π) at which the undeformed filament points at the surface's deepest
+  /// point: 0° of the per-revolution angles (SPEC §11).
+  virtual double deepest_angle() const = 0;
   /// The shape and its parameters for the outputs (summary.json `surface`) and the plots.
   virtual nlohmann::json describe() const = 0;
 };

@@ -65,8 +65,9 @@ public:
 
   StepperTraits traits() const override { return {Scheme::adaptive, true, true}; }
 
-  void begin_free(const FilamentState& s, bool) override {
+  void begin_free(const FilamentState& s, FreeStart start) override {
     phase_ = Phase::free;
+    if (start == FreeStart::pass_start) dt_ = kInitialStep;
     t_ = s.t;
     q_ = s.q;
     qd_ = s.qd;
@@ -422,7 +423,8 @@ private:
   DenseStepper stepper_;
   StepperStatistics stats_;
   Phase phase_ = Phase::free;
-  double t_ = 0, dt_ = 1e-7, slip_ = 0;
+  static constexpr double kInitialStep = 1e-7;  // the first trial step of a run or revolution [s]
+  double t_ = 0, dt_ = kInitialStep, slip_ = 0;
   double load_start_ = 0;  // F_n at the (projected) start of the current contact step [N]
   const bool damped_ = sys_.beam.damped();
   double free_damping_ = 0;  // W_d of the free flight at the last reported point [J]

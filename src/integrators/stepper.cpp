@@ -9,4 +9,6 @@ std::unique_ptr<Stepper> make_stepper(const System& system, const PassOptions& o
 
 const char* scheme_name(Scheme s) { return s == Scheme::thesis ? "thesis" : "adaptive"; }
 
+const char* steady_method_name(SteadyMethod m) { return m == SteadyMethod::shooting ? "shooting" : "brute_force"; }
+
 }  // namespace rotbeam

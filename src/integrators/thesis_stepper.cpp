@@ -49,8 +49,8 @@ public:
 
   StepperTraits traits() const override { return {Scheme::thesis, false, false}; }
 
-  void begin_free(const FilamentState& s, bool after_separation) override {
-    mode_ = after_separation ? Mode::separation_step : Mode::free;
+  void begin_free(const FilamentState& s, FreeStart start) override {
+    mode_ = start == FreeStart::separation ? Mode::separation_step : Mode::free;
     start_free_grid(s.t);
     c0_ = gap(sys_.beam, sys_.surface, s.t, s.q);
   }

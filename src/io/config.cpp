@@ -136,6 +136,8 @@ struct Parsed {
   const toml::node* depth_node = nullptr;
   const toml::node* end_angle_node = nullptr;
   const toml::node* damping_node = nullptr;
+  const toml::node* revolutions_node = nullptr;
+  const toml::node* method_node = nullptr;
 };
 
 using Setter = std::function<void(Parsed&, const std::string&, const toml::node&)>;
@@ -218,6 +220,19 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
          p.config.simulation.end_angle_deg = number_in(k, n, -90.0, 270.0, true, false);
          p.end_angle_node = &n;
        }},
+      {"simulation.revolutions",
+       [](Parsed& p, auto& k, auto& n) {
+         p.config.simulation.revolutions = integer_in(k, n, 1, 10000000);
+         p.revolutions_node = &n;
+       }},
+      {"simulation.until_steady", [](Parsed& p, auto& k, auto& n) { p.config.simulation.until_steady = boolean(k, n); }},
+      {"simulation.steady_tolerance", [](Parsed& p, auto& k, auto& n) { p.config.simulation.steady_tolerance = number_in(k, n, 0.0, 1.0, true, true); }},
+      {"simulation.steady_method",
+       [](Parsed& p, auto& k, auto& n) {
+         p.config.simulation.steady_method =
+             one_of(k, n, {"brute_force", "shooting"}) == "shooting" ? SteadyMethod::shooting : SteadyMethod::brute_force;
+         p.method_node = &n;
+       }},
       {"simulation.rtol", [](Parsed& p, auto& k, auto& n) { p.config.simulation.rtol = number_in(k, n, 0.0, 1.0, true, true); }},
       // atol bounds the error of q [m], q̇ [m/s] and the contact integrals: above 1e-3 it bounds nothing.
       {"simulation.atol", [](Parsed& p, auto& k, auto& n) { p.config.simulation.atol = number_in(k, n, 0.0, 1e-3, true, false); }},
@@ -234,6 +249,18 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
       {"simulation.deflection_warning_ratio", [](Parsed& p, auto& k, auto& n) { p.config.simulation.deflection_warning_ratio = number_in(k, n, 0.0, 100.0, true, false); }},
       {"simulation.deflection_limit_is_error", [](Parsed& p, auto& k, auto& n) { p.config.simulation.deflection_limit_is_error = boolean(k, n); }},
       {"output.interval_s", [](Parsed& p, auto& k, auto& n) { p.config.simulation.output_interval_s = number_in(k, n, 0.0, 1e30, false, false); }},
+      {"output.history_revolutions",
+       [](Parsed& p, auto& k, auto& n) {
+         // The last K revolutions' history and events, or "all" (stored as 0).
+         if (n.is_string()) {
+           one_of(k, n, {"all"});
+           p.config.simulation.history_revolutions = 0;
+         } else if (n.is_integer()) {
+           p.config.simulation.history_revolutions = integer_in(k, n, 1, 10000000);
+         } else {
+           fail(k, n, "must be a whole number of revolutions (at least 1) or \"all\"");
+         }
+       }},
       {"compat.thesis_forces", [](Parsed& p, auto& k, auto& n) { p.config.contact.friction.thesis_forces = boolean(k, n); }},
       {"compat.thesis_dcdt", [](Parsed& p, auto& k, auto& n) { p.config.simulation.thesis_dcdt = boolean(k, n); }},
       {"compat.restitution_speed",
@@ -373,6 +400,14 @@ Config validate(toml::table& root) {
     if (node) fail("beam.diameter_m", *node, what);
     throw ConfigError("beam.diameter_m = " + format_number(c.beam.diameter_m) + ": " + what);
   }
+  PassOptions& sim = c.simulation;
+  if (p.revolutions_node && p.end_angle_node)
+    fail("simulation.end_angle_deg", *p.end_angle_node,
+         "cannot be given with simulation.revolutions = " + std::to_string(sim.revolutions) +
+             " (a run ends after whole revolutions or at an angle, not both)");
+  if (sim.steady_method == SteadyMethod::shooting && !sim.until_steady)
+    fail("simulation.steady_method", *p.method_node, "needs simulation.until_steady = true (shooting looks for the steady state)");
+  if (sim.until_steady && !p.revolutions_node) sim.revolutions = kDefaultSteadyRevolutionCap;
   // The start the configuration describes must be possible (checked through the beam and surface).
   ForeshorteningBeam beam;
   try {
@@ -382,6 +417,7 @@ Config validate(toml::table& root) {
     throw ConfigError(e.what());
   }
   const std::shared_ptr<const Surface> surface = make_surface(c.surface, beam);
+  if (sim.revolutions > 0) sim.end_angle_deg = beam.theta(0.0) * 180.0 / M_PI + 360.0 * sim.revolutions;
   if (ini.start == "flexible") {
     // A flexible start must begin clear of the surface.
     const Eigen::VectorXd q0 = Eigen::Map<const Eigen::VectorXd>(ini.modal_displacement.data(), n);
@@ -444,8 +480,14 @@ nlohmann::json Config::to_json() const {
                      {"corrector_max_iterations", sim.corrector_max_iterations},
                      {"max_impacts", sim.max_impacts},
                      {"deflection_warning_ratio", sim.deflection_warning_ratio},
-                     {"deflection_limit_is_error", sim.deflection_limit_is_error}};
-  j["output"] = {{"interval_s", sim.output_interval_s}};
+                     {"deflection_limit_is_error", sim.deflection_limit_is_error},
+                     {"revolutions", sim.revolutions},
+                     {"until_steady", sim.until_steady},
+                     {"steady_tolerance", sim.steady_tolerance},
+                     {"steady_method", steady_method_name(sim.steady_method)}};
+  j["output"] = {{"interval_s", sim.output_interval_s},
+                 {"history_revolutions",
+                  sim.history_revolutions == 0 ? nlohmann::json("all") : nlohmann::json(sim.history_revolutions)}};
   j["compat"] = {{"thesis_forces", contact.friction.thesis_forces},
                  {"thesis_dcdt", sim.thesis_dcdt},
                  {"restitution_speed", impact.speed == RestitutionSpeed::full ? "full" : "normal"}};

@@ -102,6 +102,46 @@ std::string events_csv(const PassResult& result) {
   return out;
 }
 
+std::string revolutions_header(int n) {
+  std::string h =
+      "revolution,complete,t_start_s,t_end_s,impacts,contact_episodes,first_impact_deg,last_separation_deg,"
+      "normal_impulse_n_s,friction_work_j,damping_work_j,impact_loss_j,hub_work_j,energy_change_j,"
+      "mean_hub_torque_n_m,mean_hub_power_w,max_tip_deflection_ratio,section_distance,contact_time_s,"
+      "peak_normal_force_n,ledger_residual_j";
+  for (int i = 1; i <= n; ++i) h += ",q" + std::to_string(i) + "_m";
+  for (int i = 1; i <= n; ++i) h += ",qd" + std::to_string(i) + "_m_s";
+  return h;
+}
+
+void append_revolution_line(std::string& out, const RevolutionRecord& r) {
+  out += std::to_string(r.revolution);
+  out += r.complete ? ",true" : ",false";
+  for (double v : {r.t_start, r.t_end}) {
+    out += ',';
+    put(out, v);
+  }
+  out += ',' + std::to_string(r.impacts) + ',' + std::to_string(r.contact_episodes);
+  for (double v : {r.first_impact_deg, r.last_separation_deg, r.normal_impulse_n_s, r.friction_work_j, r.damping_work_j,
+                   r.impact_loss_j, r.hub_work_j, r.energy_change_j, r.mean_hub_torque_n_m, r.mean_hub_power_w,
+                   r.max_tip_deflection_ratio, r.section_distance, r.contact_time_s, r.peak_normal_force_n,
+                   r.ledger_residual_j}) {
+    out += ',';
+    put(out, v);
+  }
+  for (const Eigen::VectorXd* v : {&r.q, &r.qd})
+    for (Eigen::Index i = 0; i < v->size(); ++i) {
+      out += ',';
+      put(out, (*v)[i]);
+    }
+  out += '\n';
+}
+
+std::string revolutions_csv(const PassResult& result, int n) {
+  std::string out = revolutions_header(n) + "\n";
+  for (const RevolutionRecord& r : result.revolutions) append_revolution_line(out, r);
+  return out;
+}
+
 nlohmann::json summary_json(const PassResult& result, const Config& config, const Surface& surface) {
   const PassSummary& s = result.summary;
   const PassOptions& sim = config.simulation;
@@ -123,6 +163,27 @@ nlohmann::json summary_json(const PassResult& result, const Config& config, cons
   j["energy_change_j"] = s.energy_change_j;
   j["max_tip_deflection_ratio"] = s.max_tip_deflection_ratio;
   j["energy_audit_residual"] = s.energy_audit_residual;
+  j["mean_hub_torque_n_m"] = number_or_null(s.mean_hub_torque_n_m);
+  j["mean_hub_power_w"] = number_or_null(s.mean_hub_power_w);
+  j["revolutions"] = s.revolutions;
+  if (s.steady_state.sought) {
+    const SteadyState& st = s.steady_state;
+    nlohmann::json mu = nlohmann::json::array();
+    for (const Multiplier& m : st.multipliers) mu.push_back({{"re", m.re}, {"im", m.im}, {"abs", m.magnitude()}});
+    j["steady_state"] = {{"reached", st.reached},
+                         {"after_revolutions", st.after_revolutions},
+                         {"period_revolutions", st.period_revolutions},
+                         {"tolerance", st.tolerance},
+                         {"method", steady_method_name(st.method)},
+                         {"multipliers", mu},
+                         {"final_section_distance", number_or_null(st.final_distance)},
+                         {"newton_iterations", st.newton_iterations},
+                         {"map_evaluations", st.map_evaluations},
+                         {"event_sequence_changes", st.event_sequence_changes},
+                         {"note", st.note}};
+  } else {
+    j["steady_state"] = nullptr;
+  }
   j["steps"] = s.steps;
   j["rhs_evaluations"] = s.rhs_evaluations;
   j["corrector_iterations_max"] = s.corrector_iterations_max;
@@ -143,7 +204,8 @@ nlohmann::json summary_json(const PassResult& result, const Config& config, cons
                          {"theta_start_deg", c.theta_start * 180.0 / M_PI},
                          {"theta_end_deg", c.theta_end * 180.0 / M_PI},
                          {"y_start_m", c.y_start},
-                         {"y_end_m", c.y_end}});
+                         {"y_end_m", c.y_end},
+                         {"revolution", c.revolution}});
   j["contact_intervals"] = intervals;
   if (result.failure)
     j["failure"] = {{"kind", failure_name(result.failure->kind)},
@@ -168,7 +230,8 @@ void prepare_output_folder(const std::filesystem::path& dir) {
   std::filesystem::remove(probe, ec);
 }
 
-PassFiles::PassFiles(const std::filesystem::path& dir, int n) : dir_(dir) {
+PassFiles::PassFiles(const std::filesystem::path& dir, int n, int history_revolutions)
+    : dir_(dir), n_(n), history_revolutions_(history_revolutions) {
   namespace fs = std::filesystem;
   prepare_output_folder(dir);
   // One run at a time in a folder: an advisory lock the kernel releases if the process dies. The
@@ -194,10 +257,11 @@ PassFiles::PassFiles(const std::filesystem::path& dir, int n) : dir_(dir) {
   std::error_code ec;
   for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
     const std::string name = e.path().filename().string();
-    for (const char* stem : {"history.csv.tmp.", "events.csv.tmp.", "summary.json.tmp."})
+    for (const char* stem : {"history.csv.tmp.", "events.csv.tmp.", "revolutions.csv.tmp.", "summary.json.tmp."})
       if (name.rfind(stem, 0) == 0) fs::remove(e.path(), ec);
   }
   fs::remove(dir / "summary.json", ec);  // the folder is not complete until commit()
+  if (!ec) fs::remove(dir / "revolutions.csv", ec);  // an older run's, which this run may not write
   if (ec) throw std::runtime_error((dir / "summary.json").string() + ": cannot remove the older summary (" + ec.message() + ")");
   open(history_, "history.csv", history_header(n));
   open(events_, "events.csv", events_header());
@@ -205,10 +269,11 @@ PassFiles::PassFiles(const std::filesystem::path& dir, int n) : dir_(dir) {
 
 PassFiles::~PassFiles() {
   if (!committed_)
-    for (Stream* s : {&history_, &events_}) {
+    for (Stream* s : {&history_, &events_, &revolutions_}) {
       if (s->file) std::fclose(s->file);
       s->file = nullptr;
       if (!s->temporary_path.empty()) std::remove(s->temporary_path.c_str());
+      for (const std::filesystem::path& p : s->pieces) std::remove(p.c_str());
     }
   if (lock_fd_ >= 0) {
     ::unlink(lock_path_.c_str());  // while still held, so no other run locks the removed file
@@ -221,8 +286,65 @@ void PassFiles::open(Stream& s, const std::string& name, const std::string& head
   s.temporary_path = dir_ / (name + ".tmp." + std::to_string(::getpid()));
   s.file = std::fopen(s.temporary_path.c_str(), "wb");
   if (!s.file) throw std::runtime_error(io_error(s.final_path, "cannot write", errno));
-  s.buffer = header + "\n";
+  s.header = header + "\n";
+  s.buffer = s.header;
   s.buffer.reserve(kFlushBytes + 4096);
+}
+
+void PassFiles::rotate(Stream& s) {
+  flush(s);
+  if (std::fclose(s.file) != 0) throw std::runtime_error(io_error(s.final_path, "write failed", errno));
+  s.file = nullptr;
+  s.pieces.push_back(s.temporary_path);
+  while (static_cast<int>(s.pieces.size()) > history_revolutions_ - 1) {
+    std::remove(s.pieces.front().c_str());
+    s.pieces.erase(s.pieces.begin());
+    s.first_piece_has_header = false;
+  }
+  s.temporary_path = s.final_path;
+  s.temporary_path += ".tmp." + std::to_string(::getpid()) + "." + std::to_string(++piece_count_);
+  s.file = std::fopen(s.temporary_path.c_str(), "wb");
+  if (!s.file) throw std::runtime_error(io_error(s.final_path, "cannot write", errno));
+}
+
+void PassFiles::assemble(Stream& s) {
+  if (s.pieces.empty() && s.first_piece_has_header) return;
+  // The final file is written beside the pieces, then the current piece is replaced by it.
+  flush(s);
+  if (std::fclose(s.file) != 0) throw std::runtime_error(io_error(s.final_path, "write failed", errno));
+  std::filesystem::path joined = s.final_path;
+  joined += ".tmp." + std::to_string(::getpid()) + ".joined";
+  std::FILE* out = std::fopen(joined.c_str(), "wb");
+  if (!out) throw std::runtime_error(io_error(s.final_path, "cannot write", errno));
+  std::uintmax_t bytes = 0;
+  auto put_bytes = [&](const char* data, std::size_t size) {
+    if (std::fwrite(data, 1, size, out) != size) {
+      std::fclose(out);
+      throw std::runtime_error(io_error(s.final_path, "write failed", errno));
+    }
+    bytes += size;
+  };
+  if (!s.first_piece_has_header) put_bytes(s.header.data(), s.header.size());
+  std::vector<std::filesystem::path> parts = s.pieces;
+  parts.push_back(s.temporary_path);
+  std::vector<char> chunk(1 << 16);
+  for (const std::filesystem::path& part : parts) {
+    std::FILE* in = std::fopen(part.c_str(), "rb");
+    if (!in) {
+      std::fclose(out);
+      throw std::runtime_error(io_error(part, "cannot read back", errno));
+    }
+    std::size_t got;
+    while ((got = std::fread(chunk.data(), 1, chunk.size(), in)) > 0) put_bytes(chunk.data(), got);
+    std::fclose(in);
+    std::remove(part.c_str());
+  }
+  if (std::fclose(out) != 0) throw std::runtime_error(io_error(s.final_path, "write failed", errno));
+  s.pieces.clear();
+  s.temporary_path = joined;
+  s.bytes = bytes;
+  s.file = std::fopen(s.temporary_path.c_str(), "ab");  // close() below renames it into place
+  if (!s.file) throw std::runtime_error(io_error(s.final_path, "cannot write", errno));
 }
 
 void PassFiles::flush(Stream& s) {
@@ -245,20 +367,45 @@ void PassFiles::close(Stream& s) {
 }
 
 void PassFiles::row(const HistoryRow& row) {
+  if (rotate_pending_ && row.t > rotate_after_t_) start_next_piece();
   append_history_line(history_.buffer, row);
   if (history_.buffer.size() >= kFlushBytes) flush(history_);
 }
 
 void PassFiles::event(const PassEvent& event) {
+  if (rotate_pending_ && event.t > rotate_after_t_) start_next_piece();
   append_event_line(events_.buffer, event);
   if (events_.buffer.size() >= kFlushBytes) flush(events_);
 }
 
+void PassFiles::start_next_piece() {
+  rotate_pending_ = false;
+  rotate(history_);
+  rotate(events_);
+}
+
+void PassFiles::revolution(const RevolutionRecord& r) {
+  if (!revolutions_.file) open(revolutions_, "revolutions.csv", revolutions_header(n_));
+  append_revolution_line(revolutions_.buffer, r);
+  if (revolutions_.buffer.size() >= kFlushBytes) flush(revolutions_);
+  // The rows and events of revolution r have all arrived: with a window, the next revolution's
+  // first row or event (after its section time; the end event of the run has the section's) starts a
+  // new piece.
+  if (history_revolutions_ > 0 && r.complete) {
+    rotate_pending_ = true;
+    rotate_after_t_ = r.t_end;
+  }
+}
+
 void PassFiles::commit(const PassResult& result, const Config& config, const Surface& surface) {
+  assemble(history_);
+  assemble(events_);
   close(history_);
   close(events_);
+  if (revolutions_.file) close(revolutions_);
   nlohmann::json j = summary_json(result, config, surface);
   j["files"] = {{"history.csv", {{"bytes", history_.bytes}}}, {"events.csv", {{"bytes", events_.bytes}}}};
+  if (!revolutions_.final_path.empty()) j["files"]["revolutions.csv"] = {{"bytes", revolutions_.bytes}};
   write_file_atomically(dir_ / "summary.json", j.dump(2) + "\n");
   committed_ = true;
 }
@@ -287,6 +434,7 @@ void write_pass_outputs(const std::filesystem::path& dir, const PassResult& resu
   PassFiles files(dir, config.beam.modes);
   for (const HistoryRow& r : result.history) files.row(r);
   for (const PassEvent& e : result.events) files.event(e);
+  for (const RevolutionRecord& r : result.revolutions) files.revolution(r);  // the window was applied in memory
   files.commit(result, config, surface);
 }
 

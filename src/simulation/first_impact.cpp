@@ -31,7 +31,7 @@ FirstImpactResult first_impact(const System& system, const InitialConditions& in
     options.scheme = Scheme::thesis;
     options.free_step_s = step_s;
     const std::unique_ptr<Stepper> stepper = make_thesis_stepper(system, options);
-    stepper->begin_free(s, false);
+    stepper->begin_free(s, FreeStart::pass_start);
     r.min_gap = gap(beam, system.surface, s.t, s.q);
     bool touched = false;
     while (s.t < t_end && !touched) {

@@ -29,6 +29,12 @@ PassDriver::PassDriver(const System& system, const PassOptions& options, Stepper
       force_(system.beam.modes()),
       on_progress_(control.on_progress) {
   t_end_ = system.beam.time_at(options.end_angle_deg * M_PI / 180.0);
+  if (options.revolutions > 0) {
+    // SPEC §11: revolution k spans [θ0 + 360°(k − 1), θ0 + 360°k); its end is the section.
+    period_ = 2.0 * M_PI / system.beam.hub_motion().omega;
+    t_end_ = options.revolutions * period_;
+    next_section_ = options.revolutions > 1 ? period_ : INFINITY;
+  }
   wall0_ = next_report_ = std::chrono::steady_clock::now();
 }
 
@@ -44,6 +50,9 @@ void PassDriver::report_progress() {
   p.end_deg = options_.end_angle_deg;
   p.elapsed_s = std::chrono::duration<double>(now - wall0_).count();
   p.steps = stepper_.statistics().steps;
+  p.revolution = rec_.revolution();
+  p.revolutions = options_.revolutions;
+  p.section_distance = rec_.section_distance();
   on_progress_(p);
 }
 
@@ -79,8 +88,16 @@ void PassDriver::run(const InitialConditions& ic) {
       return;
     }
   }
-  stepper_.begin_free(state_, false);
+  stepper_.begin_free(state_, FreeStart::pass_start);
   loop();
+}
+
+bool PassDriver::cross_section() {
+  ++section_index_;
+  next_section_ = section_index_ + 1 < options_.revolutions ? (section_index_ + 1) * period_ : INFINITY;
+  if (rec_.end_revolution(state_.t, state_.q, state_.qd)) return true;
+  if (state_.phase == Phase::free) stepper_.begin_free(state_, FreeStart::pass_start);
+  return false;
 }
 
 void PassDriver::loop() {
@@ -100,7 +117,7 @@ void PassDriver::loop() {
 void PassDriver::free_flight() {
   const double t_enter = state_.t;
   while (state_.t < t_end_) {
-    const StepOutcome o = stepper_.step(state_, t_end_);
+    const StepOutcome o = stepper_.step(state_, stop_time());
     if (o.status == StepStatus::failed) return fail(o.failure->kind, o.failure->t, o.failure->message, Phase::free);
     if (o.status == StepStatus::root) {  // the gap closed: a touch
       instant_transitions_ = (state_.t - t_enter < kInstant) ? instant_transitions_ + 1 : 0;
@@ -108,7 +125,9 @@ void PassDriver::free_flight() {
       touch();
       return;
     }
-    rec_.accept(state_.t, state_.q, state_.qd, Phase::free, {}, o.integrals);
+    const bool section = state_.t >= next_section_;
+    rec_.accept(state_.t, state_.q, state_.qd, Phase::free, {}, o.integrals, section);
+    if (section && cross_section()) break;
     report_progress();
     if (o.note) {
       rec_.event(o.note->kind, state_.t, state_.q, o.note->detail);
@@ -141,7 +160,7 @@ void PassDriver::impact() {
   rec_.impact(state_.t, state_.q, qd_before_, state_.qd, r);
   if (rebounds(r)) {
     state_.phase = Phase::free;
-    stepper_.begin_free(state_, false);
+    stepper_.begin_free(state_, FreeStart::rebound);
     return;
   }
   begin_contact(r.restitution == 0.0 ? "after a plastic impact" : "after an impact");
@@ -179,7 +198,7 @@ void PassDriver::begin_contact(const std::string& why) {
 
 void PassDriver::separate() {
   state_.phase = Phase::free;
-  stepper_.begin_free(state_, true);
+  stepper_.begin_free(state_, FreeStart::separation);
 }
 
 bool PassDriver::check_slip() {
@@ -204,7 +223,7 @@ void PassDriver::contact() {
   const double t_enter = state_.t;
   while (state_.t < t_end_) {
     if (!traits_.locates_slip_stops && !check_slip()) return;
-    const StepOutcome o = stepper_.step(state_, t_end_);
+    const StepOutcome o = stepper_.step(state_, stop_time());
     if (o.status == StepStatus::failed) return fail(o.failure->kind, o.failure->t, o.failure->message, Phase::contact);
     if (o.root == Root::multiplier_vanishes) {  // separation
       rec_.accept(state_.t, state_.q, state_.qd, Phase::contact, ContactLoad{}, o.integrals, true);
@@ -212,7 +231,9 @@ void PassDriver::contact() {
       instant_transitions_ = (state_.t - t_enter < kInstant) ? instant_transitions_ + 1 : 0;
       return separate();
     }
-    rec_.accept(state_.t, state_.q, state_.qd, Phase::contact, o.load, o.integrals, o.root == Root::slip_stops);
+    const bool section = state_.t >= next_section_;
+    rec_.accept(state_.t, state_.q, state_.qd, Phase::contact, o.load, o.integrals,
+                o.root == Root::slip_stops || section);
     if (o.root == Root::slip_stops) {
       // V_t = 0: the velocity has no sign to give; the locked-tip analysis decides (SPEC §4).
       system_.beam.evaluate_dynamics(state_.q, state_.qd, *ws_);
@@ -230,6 +251,7 @@ void PassDriver::contact() {
       state_.slip = d.direction;
     }
     instant_transitions_ = 0;
+    if (section && cross_section()) break;
     report_progress();
     if (rec_.stop_requested(state_.t)) break;
   }

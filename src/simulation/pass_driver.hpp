@@ -9,6 +9,7 @@
 #include "rotbeam/pass.hpp"
 
 #include <chrono>
+#include <cmath>
 
 namespace rotbeam {
 
@@ -35,6 +36,11 @@ private:
   void finish(Phase phase);
   bool check_slip();
   void report_progress();
+  // The end of the current stepper call: the end of the run or the next revolution's section.
+  double stop_time() const { return std::min(t_end_, next_section_); }
+  // At a section (state_.t == next_section_): closes the revolution; true when the run must finish
+  // (the steady state was reached). In free flight the stepper restarts there (FreeStart::pass_start).
+  bool cross_section();
 
   const System system_;
   const PassOptions options_;
@@ -46,6 +52,9 @@ private:
   FilamentState state_;
   Eigen::VectorXd qd_before_, force_;
   double t_end_ = 0;
+  double period_ = INFINITY;        // one revolution [s] (runs over many)
+  double next_section_ = INFINITY;  // the next interior section [s]
+  int section_index_ = 0;           // sections crossed
   bool done_ = false;
   int instant_transitions_ = 0;  // phase changes without time advancing (chatter guard)
   std::function<void(const PassProgress&)> on_progress_;

@@ -77,6 +77,7 @@ double PassRecorder::hub_torque(const Eigen::VectorXd& q, const Eigen::VectorXd&
 void PassRecorder::track(double t, const Eigen::VectorXd& q) {
   const double ratio = system_.beam.tip_deflection(q) / system_.beam.beam_length();
   if (ratio > result_.summary.max_tip_deflection_ratio) result_.summary.max_tip_deflection_ratio = ratio;
+  rev_max_ratio_ = std::max(rev_max_ratio_, ratio);
   if (options_.deflection_limit_is_error && ratio > options_.deflection_warning_ratio && !validity_breached_) {
     validity_breached_ = true;
     validity_ratio_ = ratio;
@@ -140,21 +141,158 @@ void PassRecorder::sample(double t, const Eigen::VectorXd& q, const Eigen::Vecto
 void PassRecorder::start(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
   next_sample_t_ = t;
   last_t_ = t;
+  t_start_ = t;
   const EnergyTerms e = system_.beam.energy(q, qd, *ws_);
   h_start_ = e.jacobi;
   energy_start_ = e.kinetic + e.potential;
   momentum_start_ = e.angular_momentum;
   energy_scale_ = std::abs(h_start_);
+  const double L = system_.beam.beam_length(), vscale = system_.beam.hub_motion().omega * L;
+  section_prev_.resize(2 * q.size());
+  section_.resize(2 * q.size());
+  section_prev_ << q / L, qd / vscale;
+  if (options_.revolutions > 0) open_revolution(t, q, qd);
   track(t, q);
   sample(t, q, qd, Phase::free, ContactLoad{});
 }
 
 bool PassRecorder::impacts_exhausted(double t) {
-  if (result_.summary.impacts < options_.max_impacts) return false;
+  const int counted = result_.summary.impacts - (revolution_ > 0 ? mark_.impacts : 0);
+  if (counted < options_.max_impacts) return false;
   fail(FailureKind::impacts, t,
-       "more than " + std::to_string(options_.max_impacts) +
-           " impacts in one pass: impacts accumulate (raise impact.plastic_below_m_s)");
+       "more than " + std::to_string(options_.max_impacts) + (revolution_ > 0 ? " impacts in one revolution" : " impacts in one pass") +
+           ": impacts accumulate (raise impact.plastic_below_m_s)");
   return true;
+}
+
+double PassRecorder::relative_angle_deg(double t) const {
+  // SPEC §11: relative to the revolution, in (−180°, 180°], 0° at the surface's deepest point.
+  double a = std::remainder(system_.beam.theta(t) - system_.surface.deepest_angle(), 2.0 * M_PI) * 180.0 / M_PI;
+  if (a <= -180.0) a += 360.0;
+  return a;
+}
+
+void PassRecorder::note_force(double normal_force) {
+  result_.summary.peak_normal_force_n = std::max(result_.summary.peak_normal_force_n, normal_force);
+  rev_peak_force_ = std::max(rev_peak_force_, normal_force);
+}
+
+void PassRecorder::open_revolution(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
+  const PassSummary& s = result_.summary;
+  const EnergyTerms e = system_.beam.energy(q, qd, *ws_);
+  ++revolution_;
+  revolution_open_ = true;
+  mark_.t = t;
+  mark_.energy = e.kinetic + e.potential;
+  mark_.momentum = e.angular_momentum;
+  mark_.contact_moment = contact_moment_;
+  mark_.impulse_moment = impulse_moment_;
+  mark_.friction = s.friction_work_j;
+  mark_.damping = s.damping_work_j;
+  mark_.impact_loss = s.impact_loss_j;
+  mark_.normal_impulse = s.normal_impulse_n_s + normal_time_integral_;
+  mark_.contact_time = s.contact_time_s;
+  mark_.impacts = s.impacts;
+  mark_.episodes = s.contact_episodes;
+  mark_.history_rows = result_.history.size();
+  mark_.events = result_.events.size();
+  if (!control_.sink) kept_marks_.push_back(mark_);
+  rev_first_impact_deg_ = rev_last_separation_deg_ = NAN;
+  rev_peak_force_ = 0.0;
+  rev_max_ratio_ = system_.beam.tip_deflection(q) / system_.beam.beam_length();
+}
+
+bool PassRecorder::close_revolution(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, bool complete) {
+  const PassSummary& s = result_.summary;
+  const EnergyTerms e = system_.beam.energy(q, qd, *ws_);
+  const double omega = system_.beam.hub_motion().omega;
+  RevolutionRecord r;
+  r.revolution = revolution_;
+  r.complete = complete;
+  r.t_start = mark_.t;
+  r.t_end = t;
+  r.impacts = s.impacts - mark_.impacts;
+  r.contact_episodes = s.contact_episodes - mark_.episodes;
+  r.first_impact_deg = rev_first_impact_deg_;
+  r.last_separation_deg = rev_last_separation_deg_;
+  r.normal_impulse_n_s = s.normal_impulse_n_s + normal_time_integral_ - mark_.normal_impulse;
+  r.friction_work_j = s.friction_work_j - mark_.friction;
+  r.damping_work_j = s.damping_work_j - mark_.damping;
+  r.impact_loss_j = s.impact_loss_j - mark_.impact_loss;
+  r.hub_work_j = omega * (e.angular_momentum - mark_.momentum - (contact_moment_ - mark_.contact_moment) -
+                          (impulse_moment_ - mark_.impulse_moment));
+  r.energy_change_j = e.kinetic + e.potential - mark_.energy;
+  const double dt = t - mark_.t;
+  r.mean_hub_torque_n_m = dt > 0.0 ? r.hub_work_j / (omega * dt) : 0.0;
+  r.mean_hub_power_w = dt > 0.0 ? r.hub_work_j / dt : 0.0;
+  r.max_tip_deflection_ratio = rev_max_ratio_;
+  r.contact_time_s = s.contact_time_s - mark_.contact_time;
+  r.peak_normal_force_n = rev_peak_force_;
+  r.ledger_residual_j = r.hub_work_j + r.friction_work_j + r.damping_work_j + r.impact_loss_j - r.energy_change_j;
+  r.q = q;
+  r.qd = qd;
+  bool steady = false;
+  if (complete) {
+    const double L = system_.beam.beam_length();
+    section_ << q / L, qd / (omega * L);
+    auto distance = [this](const Eigen::VectorXd& z) {
+      const double scale = std::max(section_.norm(), z.norm());
+      return scale > 0.0 ? (section_ - z).norm() / scale : 0.0;
+    };
+    r.section_distance = distance(section_prev_);
+    // A steady state may repeat after p revolutions (a subharmonic orbit): the earlier sections.
+    SteadyState& st = result_.summary.steady_state;
+    int period = r.section_distance < options_.steady_tolerance ? 1 : 0;
+    for (std::size_t p = 2; period == 0 && p <= older_sections_.size() + 1; ++p)
+      if (distance(older_sections_[older_sections_.size() - (p - 1)]) < options_.steady_tolerance)
+        period = static_cast<int>(p);
+    older_sections_.push_back(section_prev_);
+    if (static_cast<int>(older_sections_.size()) > kMaxSteadyPeriod - 1) older_sections_.erase(older_sections_.begin());
+    section_prev_ = section_;
+    last_distance_ = r.section_distance;
+    last_complete_ = r;
+    have_complete_ = true;
+    if (options_.until_steady && period > 0 && !st.reached) {
+      st.reached = true;
+      st.after_revolutions = r.revolution;
+      st.period_revolutions = period;
+      steady = true;
+    }
+  }
+  if (control_.sink)
+    control_.sink->revolution(r);
+  else
+    result_.revolutions.push_back(r);
+  revolution_open_ = false;
+  return steady;
+}
+
+void PassRecorder::drop_old_revolutions() {
+  const int keep = options_.history_revolutions;
+  auto& intervals = result_.summary.contact_intervals;
+  if (keep > 0) {
+    const int oldest = revolution_ - keep + 1;  // the oldest revolution kept (the open one counts)
+    intervals.erase(std::remove_if(intervals.begin(), intervals.end(),
+                                   [oldest](const ContactInterval& c) { return c.revolution < oldest; }),
+                    intervals.end());
+  }
+  if (control_.sink || keep <= 0 || static_cast<int>(kept_marks_.size()) <= keep) return;
+  const RevolutionMark& first_kept = kept_marks_[kept_marks_.size() - keep];
+  const std::size_t rows = first_kept.history_rows, events = first_kept.events;
+  result_.history.erase(result_.history.begin(), result_.history.begin() + static_cast<std::ptrdiff_t>(rows));
+  result_.events.erase(result_.events.begin(), result_.events.begin() + static_cast<std::ptrdiff_t>(events));
+  kept_marks_.erase(kept_marks_.begin(), kept_marks_.end() - keep);
+  for (RevolutionMark& m : kept_marks_) {
+    m.history_rows -= rows;
+    m.events -= events;
+  }
+}
+
+bool PassRecorder::end_revolution(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
+  if (close_revolution(t, q, qd, true)) return true;
+  open_revolution(t, q, qd);
+  drop_old_revolutions();
+  return false;
 }
 
 void PassRecorder::accept(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Phase phase,
@@ -167,7 +305,7 @@ void PassRecorder::accept(double t, const Eigen::VectorXd& q, const Eigen::Vecto
     s.friction_work_j += in.friction_work;
     work_ += in.work;
     contact_moment_ += in.contact_moment;
-    s.peak_normal_force_n = std::max({s.peak_normal_force_n, load.normal_force, in.peak_normal_force});
+    note_force(std::max(load.normal_force, in.peak_normal_force));
   }
   last_t_ = t;
   track(t, q);
@@ -183,6 +321,10 @@ void PassRecorder::impact(double t, const Eigen::VectorXd& q, const Eigen::Vecto
   const double theta_deg = theta * 180.0 / M_PI;
   if (s.impacts == 1) s.first_impact_deg = theta_deg;
   s.last_separation_deg = theta_deg;
+  if (revolution_ > 0) {
+    if (s.impacts - mark_.impacts == 1) rev_first_impact_deg_ = relative_angle_deg(t);
+    rev_last_separation_deg_ = relative_angle_deg(t);
+  }
   s.normal_impulse_n_s += std::abs(r.impulse);
   impact_jumps_ += r.delta_t2;
   // The hub's work during the impact: ω times its angular impulse, ΔH_z less the moment of the contact
@@ -220,7 +362,7 @@ void PassRecorder::contact_start(double t, const Eigen::VectorXd& q, const Eigen
   episode_y0_ = tip_y(t, q);
   event(EventKind::contact_start, t, q, detail);
   // The force right after the plastic impact that opens an episode is often the episode's largest.
-  result_.summary.peak_normal_force_n = std::max(result_.summary.peak_normal_force_n, load.normal_force);
+  note_force(load.normal_force);
   sample(t, q, qd, Phase::contact, load);
   last_t_ = t;
 }
@@ -231,8 +373,10 @@ void PassRecorder::contact_end(double t, const Eigen::VectorXd& q, const Eigen::
   if (t > episode_t0_) {
     PassSummary& s = result_.summary;
     ++s.contact_episodes;
-    s.contact_intervals.push_back({episode_t0_, t, episode_theta0_, system_.beam.theta(t), episode_y0_, tip_y(t, q)});
+    s.contact_intervals.push_back({episode_t0_, t, episode_theta0_, system_.beam.theta(t), episode_y0_, tip_y(t, q),
+                                   std::max(revolution_, 1)});
     s.last_separation_deg = system_.beam.theta(t) * 180.0 / M_PI;
+    if (revolution_ > 0) rev_last_separation_deg_ = relative_angle_deg(t);
   }
   event(EventKind::contact_end, t, q, detail);
   sample(t, q, qd, Phase::free, ContactLoad{});
@@ -294,6 +438,45 @@ void PassRecorder::finish(double t, const Eigen::VectorXd& q, const Eigen::Vecto
   s.hub_work_j = system_.beam.hub_motion().omega *
                  (e.angular_momentum - momentum_start_ - contact_moment_ - impulse_moment_);
   s.energy_change_j = e.kinetic + e.potential - energy_start_;
+  result_.final_t = t;
+  result_.final_q = q;
+  result_.final_qd = qd;
+  const double omega = system_.beam.hub_motion().omega;
+  if (options_.revolutions > 0) {
+    if (revolution_open_) {
+      const double t_end = options_.revolutions * 2.0 * M_PI / omega;
+      close_revolution(t, q, qd, !result_.failure && t >= t_end * (1.0 - 1e-12));
+    }
+    s.revolutions = have_complete_ ? last_complete_.revolution : 0;
+    if (have_complete_) {
+      s.mean_hub_torque_n_m = last_complete_.mean_hub_torque_n_m;
+      s.mean_hub_power_w = last_complete_.mean_hub_power_w;
+    }
+    SteadyState& st = s.steady_state;
+    st.sought = options_.until_steady;
+    st.tolerance = options_.steady_tolerance;
+    st.method = options_.steady_method;
+    st.final_distance = last_distance_;
+    if (st.sought && st.method == SteadyMethod::brute_force) {
+      std::ostringstream m;
+      if (st.reached)
+        m << "reached after " << st.after_revolutions << " revolutions, "
+          << (st.period_revolutions == 1 ? std::string("periodic every revolution")
+                                         : "periodic every " + std::to_string(st.period_revolutions) + " revolutions")
+          << " (section distance over the period < " << options_.steady_tolerance << ")";
+      else if (result_.failure)
+        m << "not reached: the run stopped in revolution " << revolution_;
+      else
+        m << "not reached within " << options_.revolutions << " revolutions (section distance " << last_distance_
+          << ", tolerance " << options_.steady_tolerance << ")";
+      st.note = m.str();
+      if (!st.reached && !result_.failure) warn(t, q, "no steady state: " + st.note);
+    }
+  } else if (t > t_start_) {
+    // One pass: the means over the pass.
+    s.mean_hub_torque_n_m = s.hub_work_j / (omega * (t - t_start_));
+    s.mean_hub_power_w = s.hub_work_j / (t - t_start_);
+  }
   event(EventKind::end, t, q, "");
 }
 

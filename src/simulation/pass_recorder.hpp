@@ -11,6 +11,9 @@
 
 namespace rotbeam {
 
+/// The longest period [revolutions] of a steady state the search recognises.
+inline constexpr int kMaxSteadyPeriod = 4;
+
 class PassRecorder {
 public:
   PassRecorder(const System& system, const PassOptions& options, const PassControl& control, PassResult& result);
@@ -35,15 +38,39 @@ public:
   void finish(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Phase phase,
               const StepperStatistics& statistics);
 
+  /// A revolution's section at t (runs over many revolutions; the driver calls it at every interior
+  /// boundary, after accepting the boundary point): closes the revolution's record and, unless that
+  /// reached the steady state (then it returns true and the run should finish), opens the next.
+  bool end_revolution(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd);
+  /// The revolution under way (1, 2, …; 0 in a run of one pass).
+  int revolution() const { return revolution_; }
+  /// The last complete revolution's section distance (NaN before one).
+  double section_distance() const { return last_distance_; }
+
   bool in_episode() const { return in_episode_; }
   bool failed() const { return result_.failure.has_value(); }
   /// True when the pass must stop now: a stop was requested, or the validity limit was breached
   /// with deflection_limit_is_error (the failure is recorded the first time it is seen).
   bool stop_requested(double t);
-  /// True (with an `impacts` failure recorded) when the pass already had options.max_impacts impacts.
+  /// True (with an `impacts` failure recorded) when the pass (or, over many revolutions, the
+  /// revolution) already had options.max_impacts impacts.
   bool impacts_exhausted(double t);
 
 private:
+  // Ledger totals and counters at a revolution's start, whose differences make its record.
+  struct RevolutionMark {
+    double t = 0, energy = 0, momentum = 0, contact_moment = 0, impulse_moment = 0, friction = 0, damping = 0,
+           impact_loss = 0, normal_impulse = 0, contact_time = 0;
+    int impacts = 0, episodes = 0;
+    std::size_t history_rows = 0, events = 0;  // in-memory sizes (runs without a sink)
+  };
+  void open_revolution(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd);
+  // Closes the open revolution at t; true when it reached the steady state.
+  bool close_revolution(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, bool complete);
+  // Keeps the in-memory history, events and contact intervals of the last output.history_revolutions.
+  void drop_old_revolutions();
+  double relative_angle_deg(double t) const;
+  void note_force(double normal_force);
   void sample(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Phase phase, const ContactLoad& load);
   void track(double t, const Eigen::VectorXd& q);
   double hub_torque(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const ContactLoad& load);
@@ -72,6 +99,18 @@ private:
   bool geometry_warned_ = false;
   bool validity_breached_ = false;
   double validity_ratio_ = 0;
+  // Revolutions (options.revolutions > 0).
+  double t_start_ = 0;         // the run's start [s]
+  int revolution_ = 0;         // the latest revolution opened (0: none)
+  bool revolution_open_ = false;
+  RevolutionMark mark_;
+  std::vector<RevolutionMark> kept_marks_;  // starts of the revolutions kept in memory
+  double rev_first_impact_deg_ = NAN, rev_last_separation_deg_ = NAN, rev_peak_force_ = 0, rev_max_ratio_ = 0;
+  Eigen::VectorXd section_prev_, section_;  // z = (q/L, q̇/(ωL)) at the open revolution's start, and scratch
+  std::vector<Eigen::VectorXd> older_sections_;  // the sections before section_prev_, oldest first
+  double last_distance_ = NAN;
+  RevolutionRecord last_complete_;
+  bool have_complete_ = false;
 };
 
 }  // namespace rotbeam

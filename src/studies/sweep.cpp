@@ -199,7 +199,7 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
         SweepCaseResult res;
         try {
           const Case c = build_case(configs[i]);
-          PassFiles files(options.dir / report.cases[i].folder, configs[i].beam.modes);
+          PassFiles files(options.dir / report.cases[i].folder, configs[i].beam.modes, configs[i].simulation.history_revolutions);
           const PassResult pass = run_case(c, {&files, options.stop, {}});
           files.commit(pass, configs[i], *c.surface);
           res.summary = summary_json(pass, configs[i], *c.surface);
