@@ -405,8 +405,9 @@ Config validate(toml::table& root) {
     fail("simulation.end_angle_deg", *p.end_angle_node,
          "cannot be given with simulation.revolutions = " + std::to_string(sim.revolutions) +
              " (a run ends after whole revolutions or at an angle, not both)");
-  if (sim.steady_method == SteadyMethod::shooting && !sim.until_steady)
-    fail("simulation.steady_method", *p.method_node, "needs simulation.until_steady = true (shooting looks for the steady state)");
+  if (sim.steady_method == SteadyMethod::shooting)
+    fail("simulation.steady_method", *p.method_node,
+         "shooting (Newton on the one-revolution map) is not available yet; use \"brute_force\"");
   if (sim.until_steady && !p.revolutions_node) sim.revolutions = kDefaultSteadyRevolutionCap;
   // The start the configuration describes must be possible (checked through the beam and surface).
   ForeshorteningBeam beam;
