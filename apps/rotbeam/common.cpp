@@ -1,7 +1,9 @@
 #include "common.hpp"
 
+#include <atomic>
 #include <cmath>
 #include <csignal>
+#include <ctime>
 #include <cstdlib>
 #include <filesystem>
 #include <unistd.h>
@@ -69,9 +71,25 @@ void print_error(const std::string& message) {
 namespace {
 StopToken g_interrupt;
 
+// The first signal's time [ms, monotonic]; 0 before one arrived. Lock-free, so signal-safe.
+std::atomic<long long> g_first_signal_ms{0};
+static_assert(std::atomic<long long>::is_always_lock_free);
+
 extern "C" void on_interrupt(int signal) {
-  g_interrupt.request_stop();
-  std::signal(signal, SIG_DFL);  // a second signal ends the process at once
+  // A second signal ends the process at once, unless it comes within a second of the first: `timeout`
+  // and a terminal's Ctrl-C signal the process and its group, so one request often arrives twice.
+  timespec now{};
+  clock_gettime(CLOCK_MONOTONIC, &now);  // async-signal-safe
+  const long long ms = static_cast<long long>(now.tv_sec) * 1000 + now.tv_nsec / 1000000 + 1;
+  long long expected = 0;
+  if (g_first_signal_ms.compare_exchange_strong(expected, ms)) {
+    g_interrupt.request_stop();
+    return;
+  }
+  if (ms - expected >= 1000) {
+    std::signal(signal, SIG_DFL);
+    std::raise(signal);
+  }
 }
 }  // namespace
 
