@@ -44,7 +44,11 @@ void print_summary(const Config& config, const PassResult& r, const std::string&
   std::cout << "  steps                 " << s.steps << " (" << s.rhs_evaluations << " RHS evaluations), "
             << fixed(s.wall_time_s, 3) << " s\n";
   if (config.simulation.revolutions > 0) {
-    std::cout << "  revolutions           " << s.revolutions << " complete of " << config.simulation.revolutions << "\n";
+    if (s.steady_state.method == SteadyMethod::shooting)
+      std::cout << "  revolutions           " << s.revolutions
+                << " written: the orbit, run from the state the shooting converged to\n";
+    else
+      std::cout << "  revolutions           " << s.revolutions << " complete of " << config.simulation.revolutions << "\n";
     if (std::isfinite(s.mean_hub_torque_n_m))
       std::cout << "  last revolution       mean hub torque " << s.mean_hub_torque_n_m * 1e3 << " mN m, mean power "
                 << s.mean_hub_power_w * 1e3 << " mW\n";

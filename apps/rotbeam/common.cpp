@@ -34,6 +34,13 @@ std::function<void(const PassProgress&)> PassProgressLine::callback() {
     if (p.elapsed_s < 1.0) return;
     const double done = (p.theta_deg - p.start_deg) / (p.end_deg - p.start_deg);
     const double eta = done > 0 ? p.elapsed_s * (1 - done) / done : 0.0;
+    if (!p.stage.empty()) {
+      std::fprintf(stderr, "\r  %s, %d revolutions run, section distance %.2e, %.1f s elapsed   ", p.stage.c_str(),
+                   p.revolution, p.section_distance, p.elapsed_s);
+      std::fflush(stderr);
+      shown_ = true;
+      return;
+    }
     if (p.revolutions > 0) {
       std::fprintf(stderr, "\r  revolution %d of %d, section distance %.2e, %.1f s elapsed, ETA %.0f s   ", p.revolution,
                    p.revolutions, p.section_distance, p.elapsed_s, eta);

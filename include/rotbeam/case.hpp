@@ -25,7 +25,8 @@ struct Case {
 /// a value is outside what the model can build.
 Case build_case(const Config& config);
 
-/// Runs the case's pass (PassControl: where rows and events go, and the stop token).
+/// Runs the case's pass (PassControl: where rows and events go, and the stop token); with
+/// simulation.until_steady, to its periodic steady state (run_to_steady_state, steady_state.hpp).
 PassResult run_case(const Case& c, const PassControl& control = {});
 
 /// Runs the case to its first impact (the thesis's RK5 with simulation.free_step_s).

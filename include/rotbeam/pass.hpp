@@ -161,6 +161,7 @@ struct PassProgress {
   long steps = 0;
   int revolution = 0, revolutions = 0;  // the revolution under way (1, 2, …) and the run's number (0: one pass)
   double section_distance = NAN;        // the last complete revolution's section distance
+  std::string stage;                    // a steady-state search's stage in words ("" while a run turns)
 };
 
 /// How a pass is watched: where its rows and events go (nullptr: into PassResult), the token that

@@ -21,6 +21,9 @@ const char* steady_method_name(SteadyMethod m);
 /// simulation.revolutions when simulation.until_steady is set without it: the cap on the search.
 inline constexpr int kDefaultSteadyRevolutionCap = 1000;
 
+/// The longest period [revolutions] of a steady state the searches recognise.
+inline constexpr int kMaxSteadyPeriod = 4;
+
 struct PassOptions {
   Scheme scheme = Scheme::adaptive;   // simulation.scheme
   double end_angle_deg = 90.0;        // simulation.end_angle_deg: stop angle θ [deg] (one pass)
@@ -30,6 +33,7 @@ struct PassOptions {
   bool until_steady = false;          // simulation.until_steady: stop once the section state repeats
   double steady_tolerance = 1e-8;     // simulation.steady_tolerance: relative section distance
   SteadyMethod steady_method = SteadyMethod::brute_force;  // simulation.steady_method
+  bool multipliers = true;            // simulation.multipliers: the steady state's Floquet multipliers (4n map runs)
   // Thesis scheme (thesis §4.6–4.7).
   double free_step_s = 1e-6;          // simulation.free_step_s: RK5 step in free flight [s]
   double contact_step_s = 1e-7;       // simulation.contact_step_s: predictor–corrector step [s]

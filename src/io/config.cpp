@@ -227,6 +227,7 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
        }},
       {"simulation.until_steady", [](Parsed& p, auto& k, auto& n) { p.config.simulation.until_steady = boolean(k, n); }},
       {"simulation.steady_tolerance", [](Parsed& p, auto& k, auto& n) { p.config.simulation.steady_tolerance = number_in(k, n, 0.0, 1.0, true, true); }},
+      {"simulation.multipliers", [](Parsed& p, auto& k, auto& n) { p.config.simulation.multipliers = boolean(k, n); }},
       {"simulation.steady_method",
        [](Parsed& p, auto& k, auto& n) {
          p.config.simulation.steady_method =
@@ -405,9 +406,9 @@ Config validate(toml::table& root) {
     fail("simulation.end_angle_deg", *p.end_angle_node,
          "cannot be given with simulation.revolutions = " + std::to_string(sim.revolutions) +
              " (a run ends after whole revolutions or at an angle, not both)");
-  if (sim.steady_method == SteadyMethod::shooting)
+  if (sim.steady_method == SteadyMethod::shooting && !sim.until_steady)
     fail("simulation.steady_method", *p.method_node,
-         "shooting (Newton on the one-revolution map) is not available yet; use \"brute_force\"");
+         "shooting searches for the steady state: it needs simulation.until_steady = true");
   if (sim.until_steady && !p.revolutions_node) sim.revolutions = kDefaultSteadyRevolutionCap;
   // The start the configuration describes must be possible (checked through the beam and surface).
   ForeshorteningBeam beam;
@@ -485,7 +486,8 @@ nlohmann::json Config::to_json() const {
                      {"revolutions", sim.revolutions},
                      {"until_steady", sim.until_steady},
                      {"steady_tolerance", sim.steady_tolerance},
-                     {"steady_method", steady_method_name(sim.steady_method)}};
+                     {"steady_method", steady_method_name(sim.steady_method)},
+                     {"multipliers", sim.multipliers}};
   j["output"] = {{"interval_s", sim.output_interval_s},
                  {"history_revolutions",
                   sim.history_revolutions == 0 ? nlohmann::json("all") : nlohmann::json(sim.history_revolutions)}};

@@ -11,9 +11,6 @@
 
 namespace rotbeam {
 
-/// The longest period [revolutions] of a steady state the search recognises.
-inline constexpr int kMaxSteadyPeriod = 4;
-
 class PassRecorder {
 public:
   PassRecorder(const System& system, const PassOptions& options, const PassControl& control, PassResult& result);

@@ -1,4 +1,5 @@
 #include "rotbeam/case.hpp"
+#include "rotbeam/steady_state.hpp"
 
 #include <stdexcept>
 
@@ -27,7 +28,7 @@ Case build_case(const Config& config) {
 }
 
 PassResult run_case(const Case& c, const PassControl& control) {
-  return run_pass(c.system(), c.initial, c.options, control);
+  return run_to_steady_state(c.system(), c.initial, c.options, control);
 }
 
 FirstImpactResult run_first_impact(const Case& c) {

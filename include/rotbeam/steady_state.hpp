@@ -1,0 +1,81 @@
+// The periodic steady state of a run over many revolutions (SPEC §11, docs/model.md "Many
+// revolutions"): the m-revolution map of the section state, its Jacobian by finite differences,
+// the Floquet multipliers, and the two searches (brute force and shooting) behind
+// simulation.until_steady.
+#pragma once
+
+#include "rotbeam/pass.hpp"
+
+#include <Eigen/Dense>
+
+#include <optional>
+#include <vector>
+
+namespace rotbeam {
+
+/// The section state z = (q/L, q̇/(ωL)) (dimensionless) of the modal state q [m], q̇ [m/s].
+Eigen::VectorXd section_state(const BeamModel& beam, const Eigen::VectorXd& q, const Eigen::VectorXd& qd);
+
+/// The relative distance ‖a − b‖ / max(‖a‖, ‖b‖) between two section states (0 when both are 0):
+/// the measure of simulation.steady_tolerance.
+double section_distance(const Eigen::VectorXd& a, const Eigen::VectorXd& b);
+
+/// One evaluation of the map: the section state after m revolutions and the contact events met.
+struct MapEvaluation {
+  Eigen::VectorXd z;         // P^m(z0); empty when the run failed or was stopped
+  int impacts = 0;           // impacts over the m revolutions
+  int contact_episodes = 0;  // sustained-contact episodes over the m revolutions
+  bool complete = false;     // the m revolutions ran to their end
+  std::optional<NumericalFailure> failure;
+};
+
+/// The m-revolution map P^m of the section θ = θ0 (mod 360°): m revolutions run by run_pass from
+/// the flexible start z at θ0, with the stepper restarted as at every section, so that P^m applied
+/// to a run's section state gives that run's state m revolutions later (Revolutions.
+/// OneRevolutionIsAMapOfTheSectionState). Rows and events are discarded.
+class SectionMap {
+public:
+  SectionMap(const System& system, const PassOptions& options, const StopToken* stop);
+
+  MapEvaluation operator()(const Eigen::VectorXd& z, int m) const;
+
+  /// The Jacobian ∂P^m/∂z at z by central differences with steps δ_j = kJacobianStep·max(‖z‖, 1e-6)
+  /// (the map's integration noise, ≈ rtol·‖z‖, over δ sets its accuracy: ≈ 1e-4 at rtol 1e-9).
+  /// Evaluations whose impacts or episodes differ from `base` (the event sequence changed inside the
+  /// stencil, so the map is not smooth there) are counted in *sequence_changes. Empty on a failure.
+  Eigen::MatrixXd jacobian(const Eigen::VectorXd& z, int m, const MapEvaluation& base, int* sequence_changes) const;
+
+  int evaluations() const { return evaluations_; }
+  int revolutions_run() const { return revolutions_run_; }
+  static constexpr double kJacobianStep = 1e-5;
+
+private:
+  const System& system_;
+  PassOptions options_;
+  const StopToken* stop_;
+  mutable int evaluations_ = 0, revolutions_run_ = 0;
+};
+
+/// The eigenvalues of a map's Jacobian, largest magnitude first.
+std::vector<Multiplier> floquet_multipliers(const Eigen::MatrixXd& jacobian);
+
+/// Settings of the shooting search (SPEC §11); defaults are the product's.
+struct ShootingSettings {
+  double warmup_tolerance = 1e-3;  // brute force until the section distance is below this …
+  int warmup_revolutions = 30;     // … or this many revolutions, whichever comes first
+  int max_newton_iterations = 12;  // per period tried
+  int max_step_halvings = 6;       // backtracking when a Newton step does not reduce the residual
+};
+
+/// Runs `initial` with options.until_steady set to its periodic steady state and returns the run
+/// the user sees, with summary.steady_state filled (reached, period, multipliers, counts, note).
+///  - brute force: run_pass revolution after revolution (its rows, events and revolutions go to
+///    control.sink), then the multipliers of P^m at the orbit's section state;
+///  - shooting: a brute-force warm-up, then Newton on F(z) = P^m(z) − z with the central-difference
+///    Jacobian, m the warm-up's period (else 1, 2, 3, 4 in turn); the converged orbit's m
+///    revolutions are then run from z* into control.sink, so the files hold the periodic orbit.
+/// Never throws for numerical trouble (failures are returned as by run_pass).
+PassResult run_to_steady_state(const System& system, const InitialConditions& initial, const PassOptions& options,
+                               const PassControl& control, const ShootingSettings& settings = {});
+
+}  // namespace rotbeam

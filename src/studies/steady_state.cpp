@@ -1,0 +1,362 @@
+#include "rotbeam/steady_state.hpp"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+namespace rotbeam {
+
+namespace {
+
+// Rows and events of the map's evaluations are not kept.
+class DiscardSink final : public PassSink {
+public:
+  void row(const HistoryRow&) override {}
+  void event(const PassEvent&) override {}
+};
+
+void set_modal_state(const BeamModel& beam, const Eigen::VectorXd& z, InitialConditions& ic) {
+  const int n = beam.modes();
+  const double L = beam.beam_length(), omega = beam.hub_motion().omega;
+  ic.rigid_start = false;
+  ic.q0 = z.head(n) * L;
+  ic.qd0 = z.tail(n) * (omega * L);
+}
+
+std::string period_words(int m) {
+  return m == 1 ? std::string("periodic every revolution") : "periodic every " + std::to_string(m) + " revolutions";
+}
+
+// The multipliers in words: stable or not, and how an instability would show.
+std::string stability_words(const std::vector<Multiplier>& mu) {
+  if (mu.empty()) return "";
+  std::ostringstream s;
+  s.precision(3);
+  const Multiplier& top = mu.front();
+  if (top.magnitude() < 1.0) {
+    s << "stable (largest multiplier |μ| = " << top.magnitude() << ")";
+  } else {
+    s << "unstable (|μ| = " << top.magnitude() << ", ";
+    if (std::abs(top.im) > 1e-9 * top.magnitude())
+      s << "a complex pair: a quasi-periodic (torus) instability)";
+    else if (top.re < 0)
+      s << "real and negative: a period doubling)";
+    else
+      s << "real and positive: a fold or a symmetry breaking)";
+  }
+  return s.str();
+}
+
+}  // namespace
+
+Eigen::VectorXd section_state(const BeamModel& beam, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
+  const double L = beam.beam_length(), omega = beam.hub_motion().omega;
+  Eigen::VectorXd z(q.size() + qd.size());
+  z << q / L, qd / (omega * L);
+  return z;
+}
+
+double section_distance(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  const double scale = std::max(a.norm(), b.norm());
+  return scale > 0.0 ? (a - b).norm() / scale : 0.0;
+}
+
+SectionMap::SectionMap(const System& system, const PassOptions& options, const StopToken* stop)
+    : system_(system), options_(options), stop_(stop) {
+  options_.until_steady = false;
+  options_.history_revolutions = 1;
+  options_.output_interval_s = 1e9;  // rows only at events: the samples do not change the integration
+}
+
+MapEvaluation SectionMap::operator()(const Eigen::VectorXd& z, int m) const {
+  InitialConditions ic;
+  set_modal_state(system_.beam, z, ic);
+  PassOptions o = options_;
+  o.revolutions = m;
+  o.end_angle_deg = system_.beam.theta(0.0) * 180.0 / M_PI + 360.0 * m;
+  DiscardSink sink;
+  const PassResult r = run_pass(system_, ic, o, {&sink, stop_, {}});
+  ++evaluations_;
+  revolutions_run_ += m;
+  MapEvaluation e;
+  e.impacts = r.summary.impacts;
+  e.contact_episodes = r.summary.contact_episodes;
+  e.failure = r.failure;
+  e.complete = !r.failure && r.summary.revolutions == m;
+  if (e.complete) e.z = section_state(system_.beam, r.final_q, r.final_qd);
+  return e;
+}
+
+Eigen::MatrixXd SectionMap::jacobian(const Eigen::VectorXd& z, int m, const MapEvaluation& base,
+                                     int* sequence_changes) const {
+  const Eigen::Index dim = z.size();
+  const double delta = kJacobianStep * std::max(z.norm(), 1e-6);
+  Eigen::MatrixXd J(dim, dim);
+  for (Eigen::Index j = 0; j < dim; ++j) {
+    Eigen::VectorXd zp = z, zm = z;
+    zp[j] += delta;
+    zm[j] -= delta;
+    const MapEvaluation ep = (*this)(zp, m);
+    const MapEvaluation em = (*this)(zm, m);
+    if (!ep.complete || !em.complete) return {};
+    for (const MapEvaluation* e : {&ep, &em})
+      if (sequence_changes && (e->impacts != base.impacts || e->contact_episodes != base.contact_episodes))
+        ++*sequence_changes;
+    J.col(j) = (ep.z - em.z) / (2.0 * delta);
+  }
+  return J;
+}
+
+std::vector<Multiplier> floquet_multipliers(const Eigen::MatrixXd& jacobian) {
+  std::vector<Multiplier> mu;
+  if (jacobian.size() == 0) return mu;
+  const Eigen::EigenSolver<Eigen::MatrixXd> solver(jacobian, false);
+  if (solver.info() != Eigen::Success) return mu;
+  for (Eigen::Index i = 0; i < solver.eigenvalues().size(); ++i)
+    mu.push_back({solver.eigenvalues()[i].real(), solver.eigenvalues()[i].imag()});
+  std::stable_sort(mu.begin(), mu.end(), [](const Multiplier& a, const Multiplier& b) {
+    return a.magnitude() != b.magnitude() ? a.magnitude() > b.magnitude() : a.im > b.im;
+  });
+  return mu;
+}
+
+namespace {
+
+// The multipliers of P^m at z into st (and the counts of the evaluations they took).
+void add_multipliers(const SectionMap& map, const Eigen::VectorXd& z, int m, SteadyState& st) {
+  const MapEvaluation base = map(z, m);
+  if (!base.complete) return;
+  st.multipliers = floquet_multipliers(map.jacobian(z, m, base, &st.event_sequence_changes));
+}
+
+void report(const PassControl& control, std::chrono::steady_clock::time_point wall0, int revolutions_run, int cap,
+            double distance, const std::string& stage) {
+  if (!control.on_progress) return;
+  PassProgress p;
+  p.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  p.revolution = revolutions_run;
+  p.revolutions = cap;
+  p.section_distance = distance;
+  p.stage = stage;
+  control.on_progress(p);
+}
+
+PassResult brute_force(const System& system, const InitialConditions& initial, const PassOptions& options,
+                       const PassControl& control) {
+  PassResult r = run_pass(system, initial, options, control);
+  SteadyState& st = r.summary.steady_state;
+  if (!st.reached || r.failure || !options.multipliers) return r;
+  const auto wall0 = std::chrono::steady_clock::now();
+  const SectionMap map(system, options, control.stop);
+  report(control, wall0, st.after_revolutions, options.revolutions, st.final_distance,
+         "multipliers: " + std::to_string(4 * system.beam.modes() + 1) + " map evaluations");
+  add_multipliers(map, section_state(system.beam, r.final_q, r.final_qd), st.period_revolutions, st);
+  st.map_evaluations = map.evaluations();
+  if (st.multipliers.empty())
+    st.note += "; multipliers not computed (the map's evaluations did not complete)";
+  else
+    st.note += "; " + stability_words(st.multipliers);
+  if (st.event_sequence_changes > 0)
+    st.note += "; " + std::to_string(st.event_sequence_changes) +
+               " of the Jacobian's evaluations changed the impacts or episodes (a grazing orbit: the multipliers "
+               "are those of a non-smooth map)";
+  r.summary.wall_time_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return r;
+}
+
+struct NewtonOutcome {
+  bool converged = false;
+  Eigen::VectorXd z;        // the best section state found
+  double distance = INFINITY;
+  int iterations = 0;
+  Eigen::MatrixXd jacobian;  // the last iteration's ∂P^m/∂z (empty when none was needed)
+  std::string why;          // why it stopped without converging
+};
+
+// Newton on F(z) = P^m(z) − z from z0, with backtracking on ‖F‖.
+NewtonOutcome newton(const SectionMap& map, Eigen::VectorXd z, int m, const PassOptions& options,
+                     const ShootingSettings& settings, const PassControl& control,
+                     std::chrono::steady_clock::time_point wall0, int revolutions_before, SteadyState& st) {
+  NewtonOutcome out;
+  MapEvaluation base = map(z, m);
+  if (!base.complete) {
+    out.why = "the map's evaluation did not complete";
+    return out;
+  }
+  Eigen::VectorXd F = base.z - z;
+  out.z = z;
+  out.distance = section_distance(base.z, z);
+  const auto identity = Eigen::MatrixXd::Identity(z.size(), z.size());
+  for (int it = 0;; ++it) {
+    out.iterations = it;
+    if (out.distance < options.steady_tolerance) {
+      out.converged = true;
+      return out;
+    }
+    if (it == settings.max_newton_iterations) {
+      out.why = "Newton did not converge in " + std::to_string(it) + " iterations";
+      return out;
+    }
+    if (revolutions_before + map.revolutions_run() > options.revolutions) {
+      out.why = "the search reached simulation.revolutions = " + std::to_string(options.revolutions);
+      return out;
+    }
+    report(control, wall0, revolutions_before + map.revolutions_run(), options.revolutions, out.distance,
+           "shooting, period " + std::to_string(m) + ", Newton iteration " + std::to_string(it + 1));
+    const Eigen::MatrixXd J = map.jacobian(z, m, base, &st.event_sequence_changes);
+    out.jacobian = J;
+    if (J.size() == 0) {
+      out.why = "the map's evaluation did not complete";
+      return out;
+    }
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(J - identity);
+    if (!lu.isInvertible()) {
+      out.why = "P − I is singular (a multiplier at 1)";
+      return out;
+    }
+    const Eigen::VectorXd dz = lu.solve(-F);
+    bool accepted = false;
+    double lambda = 1.0;
+    for (int h = 0; h <= settings.max_step_halvings; ++h, lambda *= 0.5) {
+      const Eigen::VectorXd zt = z + lambda * dz;
+      const MapEvaluation et = map(zt, m);
+      if (!et.complete) continue;
+      const Eigen::VectorXd Ft = et.z - zt;
+      if (Ft.norm() < F.norm()) {
+        z = zt;
+        base = et;
+        F = Ft;
+        accepted = true;
+        break;
+      }
+    }
+    if (!accepted) {
+      out.why = out.distance < 1e3 * options.rtol
+                    ? "no Newton step reduced the residual: the integration's noise (about rtol·‖z‖) was reached; "
+                      "a tighter simulation.rtol lets a smaller tolerance be met"
+                    : "no Newton step reduced the residual: the start is outside Newton's reach, or the map is not "
+                      "smooth here (the impacts change with the state)";
+      return out;
+    }
+    out.z = z;
+    out.distance = section_distance(base.z, z);
+  }
+}
+
+PassResult shooting(const System& system, const InitialConditions& initial, const PassOptions& options,
+                    const PassControl& control, const ShootingSettings& settings) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  // 1. Warm-up by brute force, its rows discarded, to come near the orbit and learn its period.
+  PassOptions warm = options;
+  warm.steady_method = SteadyMethod::brute_force;
+  warm.steady_tolerance = std::max(settings.warmup_tolerance, options.steady_tolerance);
+  warm.revolutions = std::min(settings.warmup_revolutions, options.revolutions);
+  warm.end_angle_deg = system.beam.theta(0.0) * 180.0 / M_PI + 360.0 * warm.revolutions;
+  warm.output_interval_s = 1e9;
+  DiscardSink discard;
+  PassControl warm_control{&discard, control.stop, control.on_progress};
+  PassResult w = run_pass(system, initial, warm, warm_control);
+  const int warm_revolutions = w.summary.revolutions;
+  if (w.failure || warm_revolutions == 0) {
+    // Nothing to shoot from: the warm-up's result (its failure, or a stop) is the answer.
+    SteadyState& st = w.summary.steady_state;
+    st.method = SteadyMethod::shooting;
+    st.tolerance = options.steady_tolerance;
+    st.reached = false;
+    st.after_revolutions = 0;
+    st.period_revolutions = 0;
+    st.note = "not reached: the warm-up stopped in revolution " + std::to_string(w.summary.revolutions + 1);
+    return w;
+  }
+  const Eigen::VectorXd z0 = section_state(system.beam, w.final_q, w.final_qd);
+
+  // 2. Newton on P^m(z) − z: the warm-up's period first, then the others.
+  SteadyState st;
+  st.sought = true;
+  st.method = SteadyMethod::shooting;
+  st.tolerance = options.steady_tolerance;
+  const SectionMap map(system, options, control.stop);
+  std::vector<int> periods;
+  if (w.summary.steady_state.reached) periods.push_back(w.summary.steady_state.period_revolutions);
+  for (int m = 1; m <= kMaxSteadyPeriod; ++m)
+    if (std::find(periods.begin(), periods.end(), m) == periods.end()) periods.push_back(m);
+  NewtonOutcome best;
+  int period = 0;
+  std::ostringstream tried;
+  for (int m : periods) {
+    if (control.stop && control.stop->stop_requested()) break;
+    NewtonOutcome o = newton(map, z0, m, options, settings, control, wall0, warm_revolutions, st);
+    st.newton_iterations += o.iterations;
+    if (o.converged || o.distance < best.distance || best.z.size() == 0) {
+      best = o;
+      period = m;
+    }
+    if (o.converged) break;
+    tried << (tried.tellp() > 0 ? "; " : "") << "period " << m << ": " << o.why << " (distance " << o.distance << ")";
+    if (warm_revolutions + map.revolutions_run() > options.revolutions) break;
+  }
+
+  // 3. The orbit: m revolutions from the best state found, into the user's sink.
+  const int m = std::max(period, 1);
+  const Eigen::VectorXd z_star = best.z.size() ? best.z : z0;
+  if (options.multipliers && best.converged) {
+    if (best.jacobian.size() > 0) {
+      // The last Newton step's Jacobian, taken within a step of z* (≈ the distance it closed): its
+      // multipliers differ from those at z* by that much, far below their finite-difference accuracy.
+      st.multipliers = floquet_multipliers(best.jacobian);
+    } else {
+      report(control, wall0, warm_revolutions + map.revolutions_run(), options.revolutions, best.distance,
+             "multipliers: " + std::to_string(4 * system.beam.modes() + 1) + " map evaluations");
+      add_multipliers(map, z_star, m, st);
+    }
+  }
+  InitialConditions orbit_start;
+  set_modal_state(system.beam, z_star, orbit_start);
+  PassOptions orbit = options;
+  orbit.until_steady = false;
+  orbit.revolutions = m;
+  orbit.end_angle_deg = system.beam.theta(0.0) * 180.0 / M_PI + 360.0 * m;
+  PassResult r = run_pass(system, orbit_start, orbit, control);
+  st.map_evaluations = map.evaluations();
+  const int total = warm_revolutions + map.revolutions_run() + r.summary.revolutions;
+  st.final_distance = r.failure ? best.distance : section_distance(section_state(system.beam, r.final_q, r.final_qd), z_star);
+  st.reached = best.converged && !r.failure;
+  st.after_revolutions = st.reached ? total : 0;
+  st.period_revolutions = st.reached ? m : 0;
+  std::ostringstream note;
+  if (st.reached) {
+    note << "reached by shooting after " << total << " revolutions (warm-up " << warm_revolutions << ", "
+         << st.newton_iterations << " Newton iterations, " << st.map_evaluations << " map evaluations), "
+         << period_words(m) << " (section distance over the period " << st.final_distance << " < "
+         << options.steady_tolerance << ")";
+    if (options.multipliers)
+      note << "; " << (st.multipliers.empty() ? "multipliers not computed" : stability_words(st.multipliers));
+  } else if (r.failure) {
+    note << "not reached: the orbit's run stopped (" << r.failure->message << ")";
+  } else {
+    note << "not reached by shooting: " << tried.str();
+  }
+  if (st.event_sequence_changes > 0)
+    note << "; " << st.event_sequence_changes
+         << " evaluations of the map changed the impacts or episodes (the event sequence is not fixed near this "
+            "orbit: the map is not smooth there)";
+  st.note = note.str();
+  r.summary.steady_state = st;
+  if (!st.reached && !r.failure) r.summary.warnings.push_back("no steady state: " + st.note);
+  r.summary.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return r;
+}
+
+}  // namespace
+
+PassResult run_to_steady_state(const System& system, const InitialConditions& initial, const PassOptions& options,
+                               const PassControl& control, const ShootingSettings& settings) {
+  if (!options.until_steady || options.revolutions <= 0) return run_pass(system, initial, options, control);
+  return options.steady_method == SteadyMethod::shooting ? shooting(system, initial, options, control, settings)
+                                                         : brute_force(system, initial, options, control);
+}
+
+}  // namespace rotbeam
