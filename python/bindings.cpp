@@ -121,7 +121,8 @@ py::tuple run(const std::optional<std::string>& path, const Values& overrides) {
   const Case c = build_case(config);
   const PassResult result = interruptible([&](const StopToken& stop) { return run_case(c, {nullptr, &stop}); });
   const nlohmann::json summary = summary_json(result, config, *c.surface);
-  return py::make_tuple(from_json(summary), history_arrays(result, config.beam.modes), event_dicts(result));
+  return py::make_tuple(from_json(summary), history_arrays(result, config.beam.modes), event_dicts(result),
+                        py::bytes(revolutions_csv(result, config.beam.modes)));
 }
 
 py::object impact(const std::optional<std::string>& path, const Values& overrides) {
@@ -171,7 +172,7 @@ PYBIND11_MODULE(_core, m) {
     }
   });
   m.def("run", &run, py::arg("path"), py::arg("overrides"),
-        "A whole pass: (summary dict, history dict of arrays, list of event dicts).");
+        "A whole pass: (summary dict, history dict of arrays, list of event dicts, revolutions.csv's text).");
   m.def("impact", &impact, py::arg("path"), py::arg("overrides"),
         "The first impact as a dict (the fields of `rotbeam impact --json`), or None without impact.");
   m.def("modes", &modes, py::arg("path"), py::arg("overrides"), py::arg("speeds_rpm"),

@@ -94,14 +94,36 @@ def _arguments(config, overrides):
     return path, sets
 
 
-class Result:
-    """A whole pass: `summary` (the keys of summary.json), `history` (numpy arrays by the column
-    names of history.csv), `events` (dicts with the columns of events.csv)."""
+def _revolution_arrays(text):
+    """revolutions.csv's text as {column: numpy array} (empty arrays for a run of one pass)."""
+    import numpy as np
+    lines = text.decode().splitlines()
+    names = lines[0].split(",")
+    rows = [line.split(",") for line in lines[1:]]
+    out = {}
+    for k, name in enumerate(names):
+        values = [r[k] for r in rows]
+        if name in ("revolution", "impacts", "contact_episodes"):
+            out[name] = np.array([int(v) for v in values], dtype=np.int64)
+        elif name == "complete":
+            out[name] = np.array([v == "true" for v in values], dtype=bool)
+        else:
+            out[name] = np.array([float(v) for v in values], dtype=float)
+    return out
 
-    def __init__(self, summary, history, events):
+
+class Result:
+    """A whole pass or a run over many revolutions: `summary` (the keys of summary.json), `history`
+    (numpy arrays by the column names of history.csv), `events` (dicts with the columns of
+    events.csv) and `revolutions` (numpy arrays by the column names of revolutions.csv, one entry per
+    revolution; empty for one pass). History and events hold the last `output.history_revolutions`
+    revolutions, as the files do; `revolutions` holds every one."""
+
+    def __init__(self, summary, history, events, revolutions=None):
         self.summary = summary
         self.history = history
         self.events = events
+        self.revolutions = revolutions if revolutions is not None else {}
 
     @property
     def failure(self):
@@ -120,8 +142,8 @@ def run(config=None, overrides=None):
     Result.failure with everything computed up to it. Ctrl-C stops the pass within a step and
     raises KeyboardInterrupt."""
     path, sets = _arguments(config, overrides)
-    summary, history, events = _core.run(path, sets)
-    return Result(summary, history, events)
+    summary, history, events, revolutions = _core.run(path, sets)
+    return Result(summary, history, events, _revolution_arrays(revolutions))
 
 
 def impact(config=None, overrides=None):

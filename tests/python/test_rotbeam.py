@@ -56,6 +56,29 @@ def test_run_equals_the_cli_to_the_last_digit(tmp_path):
             assert mine["restitution"] == float(theirs["restitution"])
 
 
+def test_revolutions_and_the_steady_state_equal_the_cli(tmp_path):
+    overrides = {"beam.modes": 3, "beam.damping_ratio": 0.05, "simulation.until_steady": True,
+                 "simulation.steady_method": "shooting", "simulation.revolutions": 60, "output.interval_s": 1e-4}
+    result = rotbeam.run(overrides=overrides)
+    code, out, err = cli("run", "--set", "beam.modes=3", "--set", "beam.damping_ratio=0.05", "--set",
+                         "simulation.until_steady=true", "--set", 'simulation.steady_method="shooting"', "--set",
+                         "simulation.revolutions=60", "--set", "output.interval_s=1e-4", "-o", str(tmp_path), "--json")
+    assert code == 0, err
+    assert without_wall_time(result.summary) == without_wall_time(json.loads(out))
+    steady = result.summary["steady_state"]
+    assert steady["reached"] and steady["method"] == "shooting" and steady["multipliers"]
+    with open(tmp_path / "revolutions.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    assert len(rows) == len(result.revolutions["revolution"]) == result.summary["revolutions"]
+    for name, column in result.revolutions.items():
+        if name == "complete":
+            assert list(column) == [r[name] == "true" for r in rows]
+        else:
+            assert np.array_equal(column, np.array([float(r[name]) for r in rows])), name
+    # One pass: no revolutions.
+    assert all(len(v) == 0 for v in rotbeam.run(overrides={"output.interval_s": 1e-3}).revolutions.values())
+
+
 def test_impact_and_modes_equal_the_cli():
     overrides = {"initial.modal_velocity": [2, 0, 0, 0, 0], "hub.speed_rpm": 3000}
     mine = rotbeam.impact(overrides=overrides)
