@@ -61,6 +61,25 @@ TEST(Revolutions, LedgerClosesEveryRevolution) {
   }
 }
 
+// A lift-off right after a plastic impact and a return 10 µs later that never clears the surface by
+// the detector's band ε: with ε = 10·rtol·(r_h + L) (1.3 nm, the tip's radius as the error scale)
+// that return was taken 1.3 nm inside the surface and contact began with a position projection
+// whose energy (3e-11 J) no ledger term carries, 1.5e-8 of revolution 7's hub work. ε is now the
+// error allowed on the gap itself (Σ|∂C/∂q_i|(atol + rtol|q_i|)), and the revolution closes to
+// the integration's accuracy. The case must still contain such a return, or it tests nothing.
+TEST(Revolutions, LedgerClosesAfterAReturnInsideTheDetectorBand) {
+  const PassResult r = run({"beam.damping_ratio=0.01", "simulation.revolutions=7", "output.history_revolutions=\"all\""});
+  ASSERT_FALSE(r.failure);
+  ASSERT_EQ(r.revolutions.size(), 7u);
+  bool returns = false;
+  for (std::size_t k = 1; k < r.events.size(); ++k)
+    returns |= r.events[k - 1].kind == EventKind::lift_off && r.events[k].kind == EventKind::impact &&
+               r.events[k].t - r.events[k - 1].t < 2e-5 && r.events[k].vx_before < 2e-3;
+  EXPECT_TRUE(returns) << "no slow return within 20 µs of a lift-off: the case no longer exercises the band";
+  for (const RevolutionRecord& rev : r.revolutions)
+    EXPECT_LE(std::abs(rev.ledger_residual_j), 1e-8 * std::abs(rev.hub_work_j)) << "revolution " << rev.revolution;
+}
+
 // Revolution 3 of a run equals one revolution run from revolution 2's end state (a flexible start at
 // the section): one revolution is a map of the section state, which shooting needs. 1e-9 relative:
 // the integrations differ only by the time offset's rounding and the stepper's restart at the section.

@@ -77,9 +77,13 @@ public:
     // λ = 0 separation only tangentially (C̈ = 0), so the dense output's error can put C a hair above
     // zero: a root there is not an impact (SPEC §5). The detector is armed once the tip has been
     // below −ε; until then only a penetration beyond +ε counts. ε is ten times the local error
-    // allowed on the tip position.
-    eps_ = 10.0 * (opt_.atol + opt_.rtol * sys_.beam.tip_radius());
-    const double c = gap(sys_.beam, sys_.surface, t_, q_);
+    // allowed on the gap: Σ|∂C/∂q_i|·(atol + rtol·(|q_i| + h|q̇_i|)), the error control being on q.
+    tip_kinematics(sys_.beam, sys_.surface, t_, q_, qd_, tip_);
+    double allowed = 0.0;
+    for (int i = 0; i < n_; ++i)
+      allowed += std::abs(tip_.grad_gap[i]) * (opt_.atol + opt_.rtol * (std::abs(q_[i]) + dt_ * std::abs(qd_[i])));
+    eps_ = 10.0 * allowed;
+    const double c = tip_.gap;
     armed_ = c < -eps_;
     offset_ = armed_ ? 0.0 : eps_;
     g_prev_ = c - offset_;
