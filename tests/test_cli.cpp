@@ -1,4 +1,5 @@
 // The rotbeam binary as a user runs it: outputs, JSON field names (SPEC §7), exit codes.
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <gtest/gtest.h>
@@ -210,4 +211,15 @@ TEST(Cli, WarningsAreEventsToo) {
   const std::string events = slurp(dir + "/events.csv");
   EXPECT_NE(events.find(",warning,"), std::string::npos) << events.substr(0, 500);
   EXPECT_NE(events.find("tip deflection exceeds 0.1"), std::string::npos);
+}
+
+// Results that cannot be written to standard output (a full disk) are a failure with a one-line
+// reason, never a silent success.
+TEST(Cli, AnUnwritableStandardOutputIsAFailure) {
+  for (const char* args : {"impact >/dev/full", "modes --json >/dev/full"}) {
+    const CliRun r = run(args);
+    EXPECT_EQ(r.status, 1) << args;
+    EXPECT_NE(r.err.find("standard output: the results could not be written"), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
 }

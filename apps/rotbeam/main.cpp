@@ -2,6 +2,9 @@
 #include "commands.hpp"
 #include "common.hpp"
 
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <exception>
 #include <iostream>
 #include <map>
@@ -41,23 +44,34 @@ int main(int argc, char** argv) {
     print_error(e.what());
     return kBadInput;
   }
-  try {
-    if (app.got_subcommand("modes")) return modes();
-    if (app.got_subcommand("impact")) return impact();
-    if (app.got_subcommand("run")) return run();
-    if (app.got_subcommand("converge")) return converge();
-    if (app.got_subcommand("sweep")) return sweep();
-    if (app.got_subcommand("plot")) return plot();
-    if (app.got_subcommand("reproduce")) return reproduce();
-  } catch (const rotbeam::ConfigError& e) {
-    print_error(e.what());
+  const int code = [&]() -> int {
+    try {
+      if (app.got_subcommand("modes")) return modes();
+      if (app.got_subcommand("impact")) return impact();
+      if (app.got_subcommand("run")) return run();
+      if (app.got_subcommand("converge")) return converge();
+      if (app.got_subcommand("sweep")) return sweep();
+      if (app.got_subcommand("plot")) return plot();
+      if (app.got_subcommand("reproduce")) return reproduce();
+    } catch (const rotbeam::ConfigError& e) {
+      print_error(e.what());
+      return kBadInput;
+    } catch (const std::invalid_argument& e) {
+      print_error(e.what());
+      return kBadInput;
+    } catch (const std::exception& e) {
+      print_error(e.what());
+      return kRuntimeFailure;
+    }
     return kBadInput;
-  } catch (const std::invalid_argument& e) {
-    print_error(e.what());
-    return kBadInput;
-  } catch (const std::exception& e) {
-    print_error(e.what());
-    return kRuntimeFailure;
+  }();
+  // Output that could not be written (a full disk, a closed pipe) is a failure, not a success.
+  std::cout.flush();
+  if (std::fflush(stdout) != 0 || std::ferror(stdout) || !std::cout) {
+    const int err = errno;
+    print_error(std::string("standard output: the results could not be written (") +
+                (err != 0 ? std::strerror(err) : "write error") + ")");
+    return code == 0 ? kRuntimeFailure : code;
   }
-  return kBadInput;
+  return code;
 }
