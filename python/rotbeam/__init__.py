@@ -153,10 +153,27 @@ def impact(config=None, overrides=None):
     return _core.impact(path, sets)
 
 
+def _speeds(speeds_rpm):
+    """The speeds as a list of floats: one number or an iterable of numbers (not a string)."""
+    if isinstance(speeds_rpm, (str, bytes)):
+        raise ConfigError(f"speeds_rpm = {speeds_rpm!r}: give numbers (e.g. [550, 3000]), not a string")
+    if isinstance(speeds_rpm, (int, float)) or (hasattr(speeds_rpm, "ndim") and speeds_rpm.ndim == 0):
+        return [float(speeds_rpm)]
+    out = []
+    for s in speeds_rpm:
+        if isinstance(s, (str, bytes, bool)):
+            raise ConfigError(f"speeds_rpm: {s!r} is not a speed in rpm")
+        try:
+            out.append(float(s))
+        except (TypeError, ValueError):
+            raise ConfigError(f"speeds_rpm: {s!r} is not a speed in rpm") from None
+    return out
+
+
 def modes(config=None, overrides=None, speeds_rpm=None):
     """Natural frequencies versus hub speed (`rotbeam modes --json`):
     {"speeds_rpm": array (S,), "frequencies_hz": array (S, n)}. Default speeds: 0, the Table 5-2
     speeds and the case's own."""
     path, sets = _arguments(config, overrides)
-    speeds, freq = _core.modes(path, sets, None if speeds_rpm is None else [float(s) for s in speeds_rpm])
+    speeds, freq = _core.modes(path, sets, None if speeds_rpm is None else _speeds(speeds_rpm))
     return {"speeds_rpm": speeds, "frequencies_hz": freq}

@@ -163,6 +163,18 @@ def test_empty_speeds_are_an_error_not_the_defaults():
     assert "speeds_rpm" in str(info.value)
 
 
+@pytest.mark.parametrize("speeds", ["550", b"550", ["550"], [550, None], [True]])
+def test_speeds_that_are_not_numbers_are_an_error(speeds):
+    with pytest.raises(rotbeam.ConfigError) as info:
+        rotbeam.modes(speeds_rpm=speeds)
+    assert "speeds_rpm" in str(info.value)
+
+
+def test_one_speed_or_a_numpy_array_is_taken():
+    assert list(rotbeam.modes(speeds_rpm=550)["speeds_rpm"]) == [550.0]
+    assert list(rotbeam.modes(speeds_rpm=np.array([0.0, 550.0]))["speeds_rpm"]) == [0.0, 550.0]
+
+
 def test_ctrl_c_stops_a_run_within_a_step():
     # A 270° pass at 5 rpm takes half a minute; SIGINT after 0.5 s must raise KeyboardInterrupt at once.
     import os
