@@ -45,7 +45,7 @@ int run_impact(const ImpactOptions& o) {
       start += (i ? ", " : "") + fixed(config.initial.modal_velocity[i], 3);
     start += "] m/s";
   }
-  std::cout << "First impact: " << fixed(config.beam.speed_rpm, 0) << " rpm, depth "
+  std::cout << "First impact: " << number_text(config.beam.speed_rpm) << " rpm, depth "
             << fixed(100.0 * config.surface.depth_fraction, 2) << " %, " << config.beam.modes << " modes, "
             << start << "\n"
             << "  time             t       = " << fixed(r.t, 7) << " s\n"

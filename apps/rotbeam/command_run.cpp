@@ -23,7 +23,7 @@ struct RunOptions {
 
 void print_summary(const Config& config, const PassResult& r, const std::string& dir) {
   const PassSummary& s = r.summary;
-  std::cout << "Pass: " << fixed(config.beam.speed_rpm, 0) << " rpm, depth "
+  std::cout << "Pass: " << number_text(config.beam.speed_rpm) << " rpm, depth "
             << fixed(100 * config.surface.depth_fraction, 2) << " %, μ = " << config.contact.friction.mu << ", "
             << config.beam.modes << " modes, " << config.initial.start << " start, " << scheme_name(s.scheme)
             << " scheme\n";
@@ -83,9 +83,13 @@ int run_pass_command(const RunOptions& o) {
     print_summary(config, r, o.output_dir);
   if (r.failure) {
     const bool interrupted = r.failure->kind == FailureKind::interrupted;
-    print_error(std::string(interrupted ? "interrupted" : "numerical failure") + " (" + failure_name(r.failure->kind) +
-                ") at t = " + std::to_string(r.failure->t) + " s, θ = " + fixed(r.failure->theta * 180.0 / M_PI, 4) +
-                " deg: " + r.failure->message + "; results up to there are in " + o.output_dir);
+    const std::string where = " at t = " + std::to_string(r.failure->t) + " s, θ = " +
+                              fixed(r.failure->theta * 180.0 / M_PI, 4) + " deg";
+    if (interrupted)
+      print_error("interrupted" + where + "; results up to there are in " + o.output_dir);
+    else
+      print_error(std::string("numerical failure (") + failure_name(r.failure->kind) + ")" + where + ": " +
+                  r.failure->message + "; results up to there are in " + o.output_dir);
     return exit_code_for_failure(r.failure->kind);
   }
   return kSuccess;
