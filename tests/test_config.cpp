@@ -106,6 +106,21 @@ TEST(Config, ErrorsNameTheKeyAndTheValue) {
   }
 }
 
+// A value is one line: a line break could carry a second assignment into the TOML text.
+TEST(Config, AnOverrideValueIsOneLine) {
+  for (const char* o : {"hub.speed_rpm=3000\nsurface.friction=0.9", "hub.speed_rpm=3000\r", "initial.start=rigid\n"}) {
+    try {
+      load_config_string("", {o});
+      ADD_FAILURE() << o << " was accepted";
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("the value holds a line break"), std::string::npos) << e.what();
+    }
+  }
+  // The values API (Python's) says the same; a TOML escape \n inside a string is no line break.
+  EXPECT_THROW(load_config_values(std::nullopt, {{"hub.speed_rpm", "3000\nsurface.friction = 0.9"}}), ConfigError);
+  EXPECT_EQ(load_config_values(std::nullopt, {{"hub.speed_rpm", "3000"}}).beam.speed_rpm, 3000.0);
+}
+
 TEST(Config, MissingFileIsNamed) {
   try {
     load_config(std::string("/nonexistent/case.toml"), {});

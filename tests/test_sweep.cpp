@@ -23,14 +23,26 @@ TEST(SweepAxis, ListsAndRanges) {
   for (const char* bad : {"hub.speed_rpm", "=1,2", "hub.speed_rpm=", "hub.speed_rpm=1:2", "hub.speed_rpm=1:x:3",
                           "hub.speed_rpm=1:2:0", "hub.speed_rpm=1,,2"})
     EXPECT_THROW(parse_sweep_axis(bad), ConfigError) << bad;
+  // An unknown key is named as --vary's, with a suggestion; a line break never splits a value.
+  auto message = [](const std::string& spec) {
+    try {
+      parse_sweep_axis(spec);
+    } catch (const ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(message("hub.sped_rpm=1,2"), "--vary hub.sped_rpm: unknown key (did you mean hub.speed_rpm?)");
+  EXPECT_NE(message("hub.speed_rpm=3000\n,4000").find("--vary hub.speed_rpm: a value holds a line break"),
+            std::string::npos);
 }
 
 TEST(SweepCases, CartesianGridLastAxisFastest) {
-  const auto cases = sweep_cases({parse_sweep_axis("a.b=1,2"), parse_sweep_axis("c.d=x,y,z")});
+  const auto cases = sweep_cases({parse_sweep_axis("hub.speed_rpm=1,2"), parse_sweep_axis("initial.start=x,y,z")});
   ASSERT_EQ(cases.size(), 6u);
-  EXPECT_EQ(cases[0].overrides, (std::vector<std::string>{"a.b=1", "c.d=x"}));
-  EXPECT_EQ(cases[1].overrides, (std::vector<std::string>{"a.b=1", "c.d=y"}));
-  EXPECT_EQ(cases[5].overrides, (std::vector<std::string>{"a.b=2", "c.d=z"}));
+  EXPECT_EQ(cases[0].overrides, (std::vector<std::string>{"hub.speed_rpm=1", "initial.start=x"}));
+  EXPECT_EQ(cases[1].overrides, (std::vector<std::string>{"hub.speed_rpm=1", "initial.start=y"}));
+  EXPECT_EQ(cases[5].overrides, (std::vector<std::string>{"hub.speed_rpm=2", "initial.start=z"}));
   EXPECT_EQ(cases[5].folder, "case-0006");
 }
 

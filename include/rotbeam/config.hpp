@@ -58,4 +58,7 @@ Config load_config_string(const std::string& toml_text, const std::vector<std::s
 /// Every accepted key, "section.key", in documentation order.
 const std::vector<std::string>& config_keys();
 
+/// Throws ConfigError "<flag> KEY: unknown key (did you mean …?)" unless KEY is a configuration key.
+void require_known_key(const std::string& key, const std::string& flag);
+
 }  // namespace rotbeam

@@ -56,7 +56,8 @@ def _toml_value(value, where):
             return "inf" if value > 0 else "-inf"
         return repr(value)
     if isinstance(value, str):
-        escaped = value.replace("\\", "\\\\").replace('"', '\\"')
+        escaped = "".join(c if c not in '\\"' and ord(c) >= 0x20 and ord(c) != 0x7F else
+                          {"\\": "\\\\", '"': '\\"'}.get(c, f"\\u{ord(c):04X}") for c in value)
         return '"' + escaped + '"'
     if hasattr(value, "tolist"):
         value = value.tolist()

@@ -319,12 +319,15 @@ void apply_value(toml::table& root, const std::string& key, const std::string& t
   const std::string section = key.substr(0, dot), name = key.substr(dot + 1);
   if (std::none_of(schema().begin(), schema().end(), [&](const auto& s) { return s.first == key; }))
     throw ConfigError((what.rfind("--set ", 0) == 0 ? "--set " : "") + printable(key) + ": unknown key" + suggestion(key));
+  // One value on one line: a line break would let the text hold further assignments.
+  if (text.find_first_of("\n\r") != std::string::npos)
+    throw ConfigError(what + ": the value holds a line break (give one value on one line)");
   toml::table value_table;
   bool parsed_ok = false;
   if (!text.empty()) {
     try {
       value_table = toml::parse("value = " + text);
-      parsed_ok = value_table.contains("value");
+      parsed_ok = value_table.size() == 1 && value_table.contains("value");
     } catch (const toml::parse_error&) {
       parsed_ok = false;
     }
@@ -539,6 +542,11 @@ Config load_config_values(const std::optional<std::string>& path,
                           const std::vector<std::pair<std::string, std::string>>& values) {
   toml::table root = read_file(path);
   return resolve(root, values);
+}
+
+void require_known_key(const std::string& key, const std::string& flag) {
+  if (std::none_of(schema().begin(), schema().end(), [&](const auto& s) { return s.first == key; }))
+    throw ConfigError(flag + " " + printable(key) + ": unknown key" + suggestion(key));
 }
 
 const std::vector<std::string>& config_keys() {

@@ -70,7 +70,10 @@ SweepAxis parse_sweep_axis(const std::string& spec) {
     throw ConfigError("--vary " + spec + ": expected KEY=V1,V2,… or KEY=A:B:N");
   SweepAxis axis;
   axis.key = spec.substr(0, eq);
+  require_known_key(axis.key, "--vary");
   const std::string rest = spec.substr(eq + 1);
+  if (rest.find_first_of("\n\r") != std::string::npos)
+    throw ConfigError("--vary " + axis.key + ": a value holds a line break (give the values on one line)");
   const bool is_range = rest.find(':') != std::string::npos && rest.find_first_of("[\"") == std::string::npos;
   if (is_range) {
     std::vector<std::string> parts;
