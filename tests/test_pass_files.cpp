@@ -81,6 +81,24 @@ TEST(PassFiles, AnUncommittedWriterLeavesNoTemporaries) {
   fs::remove_all(dir);
 }
 
+// A writer that fails after taking the folder's lock (here: an older summary.json that is a
+// non-empty folder and cannot be removed) throws with the reason and leaves no lock file behind.
+TEST(PassFiles, AWriterThatCannotStartLeavesNoLock) {
+  const fs::path dir = fresh_dir("cannot-start");
+  fs::create_directories(dir / "summary.json" / "inside");
+  try {
+    PassFiles files(dir, 5);
+    ADD_FAILURE() << "the writer started over a summary.json it cannot remove";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot remove the older summary"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(dir / ".rotbeam.lock"));
+  std::vector<std::string> left;
+  for (const auto& e : fs::directory_iterator(dir)) left.push_back(e.path().filename().string());
+  EXPECT_EQ(left, std::vector<std::string>{"summary.json"});
+  fs::remove_all(dir);
+}
+
 TEST(PassFiles, MemoryStaysBoundedWhileManyRowsStream) {
   // Every accepted step sampled (~34 000 rows of 10 modes, thesis scheme): streaming must not grow the
   // resident set by more than a few MiB (the 1 MiB write buffers), where keeping the rows takes

@@ -61,6 +61,8 @@ public:
   void commit(const PassResult& result, const Config& config, const Surface& surface);
 
 private:
+  /// Removes what an uncommitted run wrote (temporaries, pieces) and the folder's lock.
+  void release() noexcept;
   struct Stream {
     std::filesystem::path final_path, temporary_path;
     std::FILE* file = nullptr;

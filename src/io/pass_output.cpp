@@ -253,21 +253,29 @@ PassFiles::PassFiles(const std::filesystem::path& dir, int n, int history_revolu
     ::close(lock_fd_);
   }
   lock_path_ = lock;
-  // With the lock held no live run writes here: temporaries are a killed run's leftovers.
-  std::error_code ec;
-  for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
-    const std::string name = e.path().filename().string();
-    for (const char* stem : {"history.csv.tmp.", "events.csv.tmp.", "revolutions.csv.tmp.", "summary.json.tmp."})
-      if (name.rfind(stem, 0) == 0) fs::remove(e.path(), ec);
+  try {
+    // With the lock held no live run writes here: temporaries are a killed run's leftovers.
+    std::error_code ec;
+    for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
+      const std::string name = e.path().filename().string();
+      for (const char* stem : {"history.csv.tmp.", "events.csv.tmp.", "revolutions.csv.tmp.", "summary.json.tmp."})
+        if (name.rfind(stem, 0) == 0) fs::remove(e.path(), ec);
+    }
+    fs::remove(dir / "summary.json", ec);  // the folder is not complete until commit()
+    if (!ec) fs::remove(dir / "revolutions.csv", ec);  // an older run's, which this run may not write
+    if (ec)
+      throw std::runtime_error((dir / "summary.json").string() + ": cannot remove the older summary (" + ec.message() + ")");
+    open(history_, "history.csv", history_header(n));
+    open(events_, "events.csv", events_header());
+  } catch (...) {
+    release();  // no destructor runs for a constructor that throws: leave no temporary and no lock
+    throw;
   }
-  fs::remove(dir / "summary.json", ec);  // the folder is not complete until commit()
-  if (!ec) fs::remove(dir / "revolutions.csv", ec);  // an older run's, which this run may not write
-  if (ec) throw std::runtime_error((dir / "summary.json").string() + ": cannot remove the older summary (" + ec.message() + ")");
-  open(history_, "history.csv", history_header(n));
-  open(events_, "events.csv", events_header());
 }
 
-PassFiles::~PassFiles() {
+PassFiles::~PassFiles() { release(); }
+
+void PassFiles::release() noexcept {
   if (!committed_)
     for (Stream* s : {&history_, &events_, &revolutions_}) {
       if (s->file) std::fclose(s->file);
@@ -278,6 +286,7 @@ PassFiles::~PassFiles() {
   if (lock_fd_ >= 0) {
     ::unlink(lock_path_.c_str());  // while still held, so no other run locks the removed file
     ::close(lock_fd_);             // releases the lock
+    lock_fd_ = -1;
   }
 }
 
