@@ -5,6 +5,7 @@
 #include "rotbeam/convergence.hpp"
 #include "rotbeam/detail/parse.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <sstream>
@@ -67,7 +68,7 @@ int run_converge(const ConvergeOptions& o) {
   for (double h : ladder.thesis_free_steps) {  // contact step h/10, fine step h/100
     check_as_key("--steps", o.steps, "simulation.free_step_s", h);
     check_as_key("--steps", o.steps, "simulation.contact_step_s", h / 10);
-    check_as_key("--steps", o.steps, "simulation.fine_contact_step_s", h / 100);
+    check_as_key("--steps", o.steps, "simulation.fine_contact_step_s", std::max(h / 100, 1e-13));
   }
   if (o.jobs < 0) throw ConfigError("--jobs " + std::to_string(o.jobs) + ": must be >= 0");
   install_interrupt_handlers();

@@ -435,6 +435,12 @@ Config validate(toml::table& root) {
   } else {
     // A rigid start must reach the surface before the end angle.
     const double theta_star = surface->first_contact_angle(beam.tip_radius(), beam.theta(0.0)) * 180.0 / M_PI;
+    if (std::isnan(theta_star)) {
+      const std::string what = "the undeformed tip never reaches the surface: the depth is below what the tip's "
+                               "position resolves in double precision";
+      if (p.depth_node) fail("surface.depth_fraction", *p.depth_node, what);
+      throw ConfigError("surface.depth_fraction = " + format_number(c.surface.depth_fraction) + ": " + what);
+    }
     if (!(theta_star < c.simulation.end_angle_deg)) {
       const toml::node* node = p.end_angle_node ? p.end_angle_node : p.depth_node;
       const std::string what = "the rigid tip reaches the surface only at " + format_number(theta_star) +

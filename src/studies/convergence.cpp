@@ -77,7 +77,7 @@ ConvergenceStudy run_convergence(const Config& base, const ConvergenceLadder& la
     c.simulation.scheme = Scheme::thesis;
     c.simulation.free_step_s = h;
     c.simulation.contact_step_s = h / 10.0;
-    c.simulation.fine_contact_step_s = h / 100.0;
+    c.simulation.fine_contact_step_s = std::max(h / 100.0, 1e-13);  // h = 1e-11 gives 9.999999999999999e-14
     ConvergenceRun r;
     r.label = "thesis h=" + label_number(h) + "/" + label_number(h / 10.0);
     r.scheme = "thesis";
