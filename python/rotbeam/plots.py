@@ -344,19 +344,18 @@ def main(argv=None):
     parser.add_argument("--campbell", metavar="PNG", help="draw a Campbell diagram of the CSV into PNG")
     parser.add_argument("--reproduce", action="store_true", help="draw the figures and report of `rotbeam reproduce`")
     args = parser.parse_args(argv)
-    if args.reproduce:
-        from .reproduce import write_report
-        report = write_report(Path(args.folder))
-        print(f"wrote {report}")
-        return 0
-    if args.campbell:
-        for w in plot_campbell(args.folder, args.campbell):
-            print(f"wrote {w}")
-        return 0
     folder = Path(args.folder)
     out = Path(args.output) if args.output else folder
+    if args.output and out.exists() and not out.is_dir():
+        print(f"rotbeam: error: -o {out}: exists and is not a folder", file=sys.stderr)
+        return 2
     try:
-        if (folder / "sweep.csv").exists():
+        if args.reproduce:
+            from .reproduce import write_report
+            written = [write_report(folder)]
+        elif args.campbell:
+            written = plot_campbell(args.folder, args.campbell)
+        elif (folder / "sweep.csv").exists():
             written = plot_sweep(folder, out, args.cases)
         elif (folder / "summary.json").exists():
             check_run_files(folder)
@@ -368,13 +367,14 @@ def main(argv=None):
     except DamagedFolder as e:
         print(f"rotbeam: error: {e}", file=sys.stderr)
         return 2
+    except OSError as e:  # before ValueError: some OSErrors are not, but say what file and why
+        where = f"{e.filename}: " if e.filename else ""
+        print(f"rotbeam: error: {where}{e.strerror or e}", file=sys.stderr)
+        return 1
     except (ValueError, KeyError, IndexError, TypeError) as e:  # json.JSONDecodeError is a ValueError
         print(f"rotbeam: error: {folder}: damaged or incomplete run files ({type(e).__name__}: {e})"[:400],
               file=sys.stderr)
         return 2
-    except OSError as e:
-        print(f"rotbeam: error: {e}", file=sys.stderr)
-        return 1
     for w in written:
         print(f"wrote {w}")
     return 0

@@ -75,6 +75,11 @@ def test_plot_writes_the_pictures_of_a_run_and_a_sweep(tmp_path):
         assert (tmp_path / "pics" / f"{name}.png").stat().st_size > 20_000, name
     bad = run("plot", str(tmp_path))
     assert bad.returncode == 2 and "neither a run folder" in bad.stderr
+    # Pictures into a path that is a file: one line naming it, nothing written.
+    (tmp_path / "a-file").write_text("mine")
+    bad = run("plot", str(tmp_path / "r"), "-o", str(tmp_path / "a-file"))
+    assert bad.returncode == 2 and bad.stderr.strip() == f"rotbeam: error: -o {tmp_path / 'a-file'}: exists and is not a folder"
+    assert (tmp_path / "a-file").read_text() == "mine"
 
 
 def test_modes_draws_a_campbell_diagram(tmp_path):
