@@ -94,11 +94,16 @@ TEST(Sweep, RunsResumesAndIsolatesFailures) {
   EXPECT_EQ(second.ran, 0);
   EXPECT_EQ(second.results[2].summary["impacts"], first.results[2].summary["impacts"]);
 
-  // A changed base configuration invalidates the finished cases.
+  // A changed base configuration invalidates the finished cases. While the new sweep runs the
+  // folder has no index: the older sweep.csv, which describes other results, is gone at once.
   options.base_overrides.push_back("simulation.rtol=1e-8");
+  bool old_index_seen = false;
+  options.on_case_finished = [&](const SweepProgress&) { old_index_seen |= fs::exists(fs::path(dir) / "sweep.csv"); };
   const SweepReport third = run_sweep(axes, options);
   EXPECT_EQ(third.resumed, 0);
   EXPECT_EQ(third.ran, 4);
+  EXPECT_FALSE(old_index_seen);
+  EXPECT_TRUE(fs::exists(fs::path(dir) / "sweep.csv"));
   fs::remove_all(dir);
 }
 

@@ -176,6 +176,16 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
       todo.push_back(i);
   }
 
+  // An older sweep.csv describes other cases (or an older state of these): until this sweep writes
+  // its own at the end, the folder has no index, so that nothing reads a mix of two sweeps.
+  if (!todo.empty()) {
+    std::error_code ec;
+    std::filesystem::remove(options.dir / "sweep.csv", ec);
+    if (ec)
+      throw std::runtime_error((options.dir / "sweep.csv").string() + ": cannot remove the older index (" +
+                               ec.message() + ")");
+  }
+
   std::mutex mutex;
   SweepProgress progress;
   progress.total = static_cast<int>(report.cases.size());
