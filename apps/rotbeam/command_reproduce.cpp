@@ -4,6 +4,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "python_bridge.hpp"
+#include "rotbeam/folder_lock.hpp"
 
 #include "rotbeam/atomic_file.hpp"
 #include "rotbeam/case.hpp"
@@ -11,6 +12,7 @@
 #include "rotbeam/job_runner.hpp"
 #include "rotbeam/pass_output.hpp"
 
+#include <optional>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -112,8 +114,10 @@ struct ReproduceOptions {
 int run_reproduce(const ReproduceOptions& o) {
   if (o.jobs < 0) throw ConfigError("--jobs " + std::to_string(o.jobs) + ": must be >= 0");
   const fs::path dir(o.output_dir);
+  std::optional<FolderLock> lock;  // one reproduction at a time in a folder
   try {
     prepare_output_folder(dir);
+    lock.emplace(dir);
   } catch (const std::exception& e) {
     throw ConfigError(std::string("-o ") + e.what());
   }

@@ -9,10 +9,13 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 
 namespace rotbeam {
+
+class FolderLock;
 
 /// Column names of history.csv for n modes.
 std::string history_header(int n);
@@ -90,8 +93,7 @@ private:
   double rotate_after_t_ = 0;
   void start_next_piece();
   Stream history_, events_, revolutions_;
-  int lock_fd_ = -1;
-  std::filesystem::path lock_path_;
+  std::unique_ptr<FolderLock> lock_;
   bool committed_ = false;
 };
 

@@ -2,6 +2,7 @@
 
 #include "rotbeam/atomic_file.hpp"
 #include "rotbeam/detail/csv.hpp"
+#include "rotbeam/folder_lock.hpp"
 
 #include <cerrno>
 #include <cmath>
@@ -234,25 +235,7 @@ PassFiles::PassFiles(const std::filesystem::path& dir, int n, int history_revolu
     : dir_(dir), n_(n), history_revolutions_(history_revolutions) {
   namespace fs = std::filesystem;
   prepare_output_folder(dir);
-  // One run at a time in a folder: an advisory lock the kernel releases if the process dies. The
-  // lock file is removed when the writer ends; a lock taken on a file that was removed meanwhile is
-  // not the folder's lock, so it is taken again on the current one.
-  const fs::path lock = dir / ".rotbeam.lock";
-  for (;;) {
-    lock_fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-    if (lock_fd_ < 0) throw std::runtime_error(io_error(lock, "cannot create the folder's lock", errno));
-    if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
-      ::close(lock_fd_);
-      lock_fd_ = -1;
-      throw std::runtime_error(dir.string() + ": another rotbeam run is writing into this folder; choose another -o");
-    }
-    struct stat held {}, current {};
-    if (::fstat(lock_fd_, &held) == 0 && ::stat(lock.c_str(), &current) == 0 && held.st_ino == current.st_ino &&
-        held.st_dev == current.st_dev)
-      break;
-    ::close(lock_fd_);
-  }
-  lock_path_ = lock;
+  lock_ = std::make_unique<FolderLock>(dir);  // one run at a time in a folder
   try {
     // With the lock held no live run writes here: temporaries are a killed run's leftovers.
     std::error_code ec;
@@ -283,11 +266,7 @@ void PassFiles::release() noexcept {
       if (!s->temporary_path.empty()) std::remove(s->temporary_path.c_str());
       for (const std::filesystem::path& p : s->pieces) std::remove(p.c_str());
     }
-  if (lock_fd_ >= 0) {
-    ::unlink(lock_path_.c_str());  // while still held, so no other run locks the removed file
-    ::close(lock_fd_);             // releases the lock
-    lock_fd_ = -1;
-  }
+  lock_.reset();
 }
 
 void PassFiles::open(Stream& s, const std::string& name, const std::string& header) {

@@ -1,11 +1,13 @@
 #include "rotbeam/sweep.hpp"
 
 #include "rotbeam/atomic_file.hpp"
+#include "rotbeam/folder_lock.hpp"
 #include "rotbeam/case.hpp"
 #include "rotbeam/detail/csv.hpp"
 #include "rotbeam/detail/parse.hpp"
 #include "rotbeam/pass_output.hpp"
 
+#include <optional>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -149,8 +151,10 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
       }() + "): " + e.what());
     }
   }
+  std::optional<FolderLock> lock;  // one sweep at a time in a folder (each case folder has its own)
   try {
     prepare_output_folder(options.dir);
+    lock.emplace(options.dir);
   } catch (const std::runtime_error& e) {
     throw ConfigError(std::string("-o ") + e.what());
   }

@@ -104,3 +104,24 @@ def test_reproduce_writes_every_figure_and_table(tmp_path):
         assert report.count("**The thesis states:**") == 10
     assert "## Summary: which of the thesis's trends hold" in report
     assert elapsed < 300, f"reproduce took {elapsed:.0f} s"
+
+
+def test_one_sweep_at_a_time_in_a_folder(tmp_path):
+    out = tmp_path / "s"
+    first = subprocess.Popen([CLI, "sweep", "--vary", "hub.speed_rpm=550,600", "--set", "simulation.revolutions=10",
+                              "--jobs", "1", "-o", str(out)], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                             text=True)
+    try:
+        deadline = time.monotonic() + 30
+        while not (out / ".rotbeam.lock").exists() and time.monotonic() < deadline:
+            time.sleep(0.01)
+        assert (out / ".rotbeam.lock").exists()
+        for args in (["sweep", "--vary", "hub.speed_rpm=3000"], ["reproduce"]):
+            second = run(*args, "-o", str(out))
+            assert second.returncode == 2
+            assert second.stderr.strip() == f"rotbeam: error: -o {out}: another rotbeam run is writing into this folder; choose another -o"
+    finally:
+        _, err = first.communicate(timeout=120)
+    assert first.returncode == 0, err
+    assert not (out / ".rotbeam.lock").exists()
+    assert len(read_rows(out / "sweep.csv")) == 2
