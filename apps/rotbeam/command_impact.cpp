@@ -19,7 +19,13 @@ struct ImpactOptions {
 
 int run_impact(const ImpactOptions& o) {
   const Config config = o.case_options.load();
-  const FirstImpactResult r = run_first_impact(build_case(config));
+  install_interrupt_handlers();
+  const FirstImpactResult r = run_first_impact(build_case(config), &interrupt_token());
+  if (r.failure && r.failure->kind == FailureKind::interrupted) {
+    print_error("interrupted at t = " + number_text(r.failure->t) + " s, θ = " +
+                number_text(r.failure->theta * 180.0 / M_PI) + " deg, before the first impact");
+    return exit_code_for_failure(r.failure->kind);
+  }
   if (r.failure) {
     print_error("numerical failure (" + std::string(failure_name(r.failure->kind)) + ") at t = " +
                 number_text(r.failure->t) + " s, θ = " + number_text(r.failure->theta * 180.0 / M_PI) +

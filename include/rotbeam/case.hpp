@@ -30,6 +30,6 @@ Case build_case(const Config& config);
 PassResult run_case(const Case& c, const PassControl& control = {});
 
 /// Runs the case to its first impact (the thesis's RK5 with simulation.free_step_s).
-FirstImpactResult run_first_impact(const Case& c);
+FirstImpactResult run_first_impact(const Case& c, const StopToken* stop = nullptr);
 
 }  // namespace rotbeam

@@ -22,8 +22,9 @@ struct FirstImpactResult {
 
 /// Runs to the first impact (up to `end_angle_deg`) with free-flight step `step_s` [s] and applies
 /// system.law.impact. Throws std::invalid_argument when the initial shape already touches; a numerical
-/// breakdown is returned in `failure` (found = false).
+/// breakdown, or a stop requested on `stop` (checked at every step), is returned in `failure`
+/// (found = false; kind `interrupted` for a stop).
 FirstImpactResult first_impact(const System& system, const InitialConditions& initial, double end_angle_deg,
-                               double step_s);
+                               double step_s, const StopToken* stop = nullptr);
 
 }  // namespace rotbeam

@@ -6,7 +6,7 @@
 namespace rotbeam {
 
 FirstImpactResult first_impact(const System& system, const InitialConditions& initial, double end_angle_deg,
-                               double step_s) {
+                               double step_s, const StopToken* stop) {
   const BeamModel& beam = system.beam;
   const int n = beam.modes();
   const double t_end = beam.time_at(end_angle_deg * M_PI / 180.0);
@@ -35,6 +35,12 @@ FirstImpactResult first_impact(const System& system, const InitialConditions& in
     r.min_gap = gap(beam, system.surface, s.t, s.q);
     bool touched = false;
     while (s.t < t_end && !touched) {
+      if (stop && stop->stop_requested()) {
+        r.failure = NumericalFailure{FailureKind::interrupted, s.t, beam.theta(s.t),
+                                     "the search for the first impact was interrupted"};
+        r.steps = stepper->statistics().steps;
+        return r;
+      }
       const StepOutcome o = stepper->step(s, t_end);
       if (o.status == StepStatus::failed) {
         r.failure = o.failure;

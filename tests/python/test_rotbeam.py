@@ -190,6 +190,21 @@ def test_ctrl_c_stops_a_run_within_a_step():
     assert time.time() - t0 < 3.0
 
 
+def test_ctrl_c_stops_the_search_for_the_first_impact():
+    # A flexible start at 0.1 rpm with 0.1 µs steps searches for minutes; SIGINT must end it at once.
+    import signal
+    import threading
+    import time
+
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    t0 = time.time()
+    with pytest.raises(KeyboardInterrupt):
+        rotbeam.impact(overrides={"initial.start": "flexible", "initial.modal_velocity": [0.1, 0, 0, 0, 0],
+                                  "hub.speed_rpm": 0.1, "simulation.free_step_s": 1e-7})
+    assert time.time() - t0 < 3.0
+
+
 def test_plot_names_a_damaged_file_in_one_line(tmp_path):
     out = tmp_path / "run"
     code, _, err = cli("run", "-o", str(out))
