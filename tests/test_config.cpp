@@ -121,6 +121,22 @@ TEST(Config, AnOverrideValueIsOneLine) {
   EXPECT_EQ(load_config_values(std::nullopt, {{"hub.speed_rpm", "3000"}}).beam.speed_rpm, 3000.0);
 }
 
+// A huge value is shown by its beginning and its size: the message stays one short line.
+TEST(Config, AHugeValueIsShownShort) {
+  std::string values = "[1";
+  for (int i = 1; i < 100000; ++i) values += ",1";
+  for (const std::string& o : {"initial.modal_velocity=" + values + "]", "initial.start=\"" + std::string(5000, 'a') + "\""}) {
+    try {
+      load_config_string("", {o});
+      ADD_FAILURE() << "accepted";
+    } catch (const ConfigError& e) {
+      const std::string m = e.what();
+      EXPECT_LT(m.size(), 200u) << m.substr(0, 300);
+      EXPECT_TRUE(m.find("(100000 values)") != std::string::npos || m.find("(5000 characters)") != std::string::npos) << m;
+    }
+  }
+}
+
 TEST(Config, MissingFileIsNamed) {
   try {
     load_config(std::string("/nonexistent/case.toml"), {});

@@ -44,7 +44,11 @@ std::string printable(const std::string& s) {
 // A short, single-line rendering of a TOML node for error messages, with numbers in their shortest
 // round-trip form (what the user typed: -0.0635, not -0.063500000000000001).
 std::string render(const toml::node& node) {
-  if (node.is_string()) return '"' + printable(*node.value<std::string>()) + '"';
+  if (node.is_string()) {
+    std::string s = printable(*node.value<std::string>());
+    if (s.size() > 80) s = s.substr(0, 60) + "… (" + std::to_string(s.size()) + " characters)";
+    return '"' + s + '"';
+  }
   if (node.is_integer()) return std::to_string(*node.value<int64_t>());
   if (node.is_floating_point()) {
     const double v = *node.value<double>();
@@ -58,8 +62,11 @@ std::string render(const toml::node& node) {
   }
   if (node.is_boolean()) return *node.value<bool>() ? "true" : "false";
   if (const toml::array* arr = node.as_array()) {
+    // A long array is shown by its first values and its length, so a message stays one readable line.
+    constexpr std::size_t kShown = 8;
     std::string out = "[";
-    for (std::size_t i = 0; i < arr->size(); ++i) out += (i ? ", " : "") + render((*arr)[i]);
+    for (std::size_t i = 0; i < arr->size() && i < kShown; ++i) out += (i ? ", " : "") + render((*arr)[i]);
+    if (arr->size() > kShown) out += ", … (" + std::to_string(arr->size()) + " values)";
     return out + "]";
   }
   if (node.is_table()) return "{…}";
