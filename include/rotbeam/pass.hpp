@@ -76,6 +76,15 @@ struct RevolutionRecord {
   Eigen::VectorXd q, qd;  // the state at the revolution's end [m], [m/s]
 };
 
+/// The section state z = (q/L, q̇/(ωL)) (dimensionless) of the modal state q [m], q̇ [m/s] (SPEC §11),
+/// written into z (resized to 2n) or returned.
+void section_state(const BeamModel& beam, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Eigen::VectorXd& z);
+Eigen::VectorXd section_state(const BeamModel& beam, const Eigen::VectorXd& q, const Eigen::VectorXd& qd);
+
+/// The relative distance ‖a − b‖ / max(‖a‖, ‖b‖) between two section states (0 when both are 0):
+/// the measure of simulation.steady_tolerance and of revolutions.csv's section_distance.
+double section_distance(const Eigen::VectorXd& a, const Eigen::VectorXd& b);
+
 /// A Floquet multiplier of the one-revolution map (an eigenvalue of its Jacobian at the section).
 struct Multiplier {
   double re = 0, im = 0;

@@ -13,13 +13,6 @@
 
 namespace rotbeam {
 
-/// The section state z = (q/L, q̇/(ωL)) (dimensionless) of the modal state q [m], q̇ [m/s].
-Eigen::VectorXd section_state(const BeamModel& beam, const Eigen::VectorXd& q, const Eigen::VectorXd& qd);
-
-/// The relative distance ‖a − b‖ / max(‖a‖, ‖b‖) between two section states (0 when both are 0):
-/// the measure of simulation.steady_tolerance.
-double section_distance(const Eigen::VectorXd& a, const Eigen::VectorXd& b);
-
 /// One evaluation of the map: the section state after m revolutions and the contact events met.
 struct MapEvaluation {
   Eigen::VectorXd z;         // P^m(z0); empty when the run failed or was stopped

@@ -138,6 +138,23 @@ void PassRecorder::sample(double t, const Eigen::VectorXd& q, const Eigen::Vecto
   next_sample_t_ = options_.output_interval_s * (std::floor(t / options_.output_interval_s) + 1.0);
 }
 
+void section_state(const BeamModel& beam, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Eigen::VectorXd& z) {
+  const double L = beam.beam_length(), omega = beam.hub_motion().omega;
+  z.resize(q.size() + qd.size());
+  z << q / L, qd / (omega * L);
+}
+
+Eigen::VectorXd section_state(const BeamModel& beam, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
+  Eigen::VectorXd z;
+  section_state(beam, q, qd, z);
+  return z;
+}
+
+double section_distance(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  const double scale = std::max(a.norm(), b.norm());
+  return scale > 0.0 ? (a - b).norm() / scale : 0.0;
+}
+
 void PassRecorder::start(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
   next_sample_t_ = t;
   last_t_ = t;
@@ -147,10 +164,8 @@ void PassRecorder::start(double t, const Eigen::VectorXd& q, const Eigen::Vector
   energy_start_ = e.kinetic + e.potential;
   momentum_start_ = e.angular_momentum;
   energy_scale_ = std::abs(h_start_);
-  const double L = system_.beam.beam_length(), vscale = system_.beam.hub_motion().omega * L;
-  section_prev_.resize(2 * q.size());
-  section_.resize(2 * q.size());
-  section_prev_ << q / L, qd / vscale;
+  section_state(system_.beam, q, qd, section_prev_);
+  section_.resize(section_prev_.size());
   if (options_.revolutions > 0) open_revolution(t, q, qd);
   track(t, q);
   sample(t, q, qd, Phase::free, ContactLoad{});
@@ -233,12 +248,8 @@ bool PassRecorder::close_revolution(double t, const Eigen::VectorXd& q, const Ei
   r.qd = qd;
   bool steady = false;
   if (complete) {
-    const double L = system_.beam.beam_length();
-    section_ << q / L, qd / (omega * L);
-    auto distance = [this](const Eigen::VectorXd& z) {
-      const double scale = std::max(section_.norm(), z.norm());
-      return scale > 0.0 ? (section_ - z).norm() / scale : 0.0;
-    };
+    section_state(system_.beam, q, qd, section_);
+    auto distance = [this](const Eigen::VectorXd& z) { return rotbeam::section_distance(section_, z); };
     r.section_distance = distance(section_prev_);
     // A steady state may repeat after p revolutions (a subharmonic orbit): the earlier sections.
     SteadyState& st = result_.summary.steady_state;

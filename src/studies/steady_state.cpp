@@ -52,18 +52,6 @@ std::string stability_words(const std::vector<Multiplier>& mu) {
 
 }  // namespace
 
-Eigen::VectorXd section_state(const BeamModel& beam, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
-  const double L = beam.beam_length(), omega = beam.hub_motion().omega;
-  Eigen::VectorXd z(q.size() + qd.size());
-  z << q / L, qd / (omega * L);
-  return z;
-}
-
-double section_distance(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-  const double scale = std::max(a.norm(), b.norm());
-  return scale > 0.0 ? (a - b).norm() / scale : 0.0;
-}
-
 SectionMap::SectionMap(const System& system, const PassOptions& options, const StopToken* stop)
     : system_(system), options_(options), stop_(stop) {
   options_.until_steady = false;
