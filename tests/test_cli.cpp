@@ -216,7 +216,7 @@ TEST(Cli, WarningsAreEventsToo) {
 // Results that cannot be written to standard output (a full disk) are a failure with a one-line
 // reason, never a silent success.
 TEST(Cli, AnUnwritableStandardOutputIsAFailure) {
-  for (const char* args : {"impact >/dev/full", "modes --json >/dev/full"}) {
+  for (const char* args : {"impact >/dev/full", "modes --json >/dev/full", "--help >/dev/full", "run --help >/dev/full", "--version >/dev/full"}) {
     const CliRun r = run(args);
     EXPECT_EQ(r.status, 1) << args;
     EXPECT_NE(r.err.find("standard output: the results could not be written"), std::string::npos) << r.err;

@@ -205,6 +205,28 @@ TEST(Reliability, InterruptKeepsACompleteRecord) {
   fs::remove_all(out);
 }
 
+TEST(Reliability, ProgressCountsFromTheFlexibleStart) {
+  // A rigid start turns the undeformed filament from θ0 to the first impact at no cost: the
+  // progress fraction and its ETA count from there, so they start near 0 % instead of at the
+  // fraction of the rigid turn (≈ 92 % of −90° … 0° for the base case ended at 0°).
+  BeamParameters p;
+  const ForeshorteningBeam model = make_beam(p);
+  const Plane plane = plane_at_depth(model, 0.02);
+  PassOptions opt;
+  opt.end_angle_deg = 0.0;
+  std::vector<PassProgress> seen;
+  PassControl control;
+  control.on_progress = [&](const PassProgress& pr) { seen.push_back(pr); };
+  const PassResult r = run_pass({model, plane, {}}, InitialConditions{}, opt, control);
+  ASSERT_FALSE(r.failure);
+  ASSERT_FALSE(seen.empty());
+  const PassProgress& first = seen.front();
+  EXPECT_NEAR(first.start_deg, r.summary.first_impact_deg, 1e-9);
+  const double done = (first.theta_deg - first.start_deg) / (first.end_deg - first.start_deg);
+  EXPECT_GE(done, 0.0);
+  EXPECT_LT(done, 0.5) << "θ = " << first.theta_deg << "° from " << first.start_deg << "°";
+}
+
 TEST(Reliability, AStepThatCannotAdvanceIsAnUnderflow) {
   // A free step of 1e-300 s cannot advance t ≈ 0.0248 s (t + h == t): before, the pass stayed at the
   // same t for ever. The configuration's ranges keep the command line from it; the library stops

@@ -32,19 +32,19 @@ int main(int argc, char** argv) {
     print_error("unknown command '" + std::string(argv[1]) + "' (commands: run, sweep, plot, reproduce, converge, impact, modes; see rotbeam --help)");
     return kBadInput;
   }
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    print_error(e.what());
-    return kBadInput;
-  }
   const int code = [&]() -> int {
+    try {
+      app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+      return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+      return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+      return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+      print_error(e.what());
+      return kBadInput;
+    }
     try {
       if (app.got_subcommand("modes")) return modes();
       if (app.got_subcommand("impact")) return impact();
@@ -65,7 +65,8 @@ int main(int argc, char** argv) {
     }
     return kBadInput;
   }();
-  // Output that could not be written (a full disk, a closed pipe) is a failure, not a success.
+  // Output that could not be written (a full disk, a closed pipe) is a failure, not a success,
+  // the help and the version included.
   std::cout.flush();
   if (std::fflush(stdout) != 0 || std::ferror(stdout) || !std::cout) {
     const int err = errno;

@@ -46,7 +46,7 @@ void PassDriver::report_progress() {
   next_report_ = now + std::chrono::milliseconds(250);
   PassProgress p;
   p.theta_deg = system_.beam.theta(state_.t) * 180.0 / M_PI;
-  p.start_deg = system_.beam.theta(0.0) * 180.0 / M_PI;
+  p.start_deg = system_.beam.theta(flexible_from_t_) * 180.0 / M_PI;
   p.end_deg = options_.end_angle_deg;
   p.elapsed_s = std::chrono::duration<double>(now - wall0_).count();
   p.steps = stepper_.statistics().steps;
@@ -81,6 +81,7 @@ void PassDriver::run(const InitialConditions& ic) {
     const double t_star = std::isnan(theta_star) ? INFINITY : system_.beam.time_at(theta_star);
     if (t_star < t_end_) {
       state_.t = t_star;
+      flexible_from_t_ = t_star;  // the rigid turn costs nothing: progress counts from here
       rec_.accept(state_.t, state_.q, state_.qd, Phase::free, {}, {}, true);
       impact();
       if (done_) return;

@@ -59,6 +59,7 @@ private:
   int instant_transitions_ = 0;  // phase changes without time advancing (chatter guard)
   std::function<void(const PassProgress&)> on_progress_;
   std::chrono::steady_clock::time_point wall0_, next_report_;
+  double flexible_from_t_ = 0.0;  // where the integration of the flexible motion began [s]
   long progress_count_ = 0;
 };
 
