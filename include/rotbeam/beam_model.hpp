@@ -117,4 +117,9 @@ void acceleration(const BeamModel& beam, const Eigen::Ref<const Eigen::VectorXd>
                   const Eigen::Ref<const Eigen::VectorXd>& qd, const Eigen::VectorXd* generalized_force,
                   BeamWorkspace& ws, Eigen::Ref<Eigen::VectorXd> qdd);
 
+/// The tip's distance from its clamp at (r_h, 0) in the hub frame, in units of L [-] (SPEC §10). An
+/// inextensible filament has at most 1: above kReachLimit the model has left its geometry.
+double tip_reach(const BeamModel& beam, const Eigen::Ref<const Eigen::VectorXd>& q);
+inline constexpr double kReachLimit = 1.01;
+
 }  // namespace rotbeam

@@ -26,6 +26,13 @@ std::string format_number(double v) {
   return std::string(buf, res.ptr);
 }
 
+// A computed quantity in a message: six significant digits (a given value is shown as given).
+std::string computed_number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
 // Control characters (a NUL, a newline) shown as \uXXXX, so that a message stays one whole line.
 std::string printable(const std::string& s) {
   std::string out;
@@ -433,9 +440,17 @@ Config validate(toml::table& root) {
   if (ini.start == "flexible") {
     // A flexible start must begin clear of the surface.
     const Eigen::VectorXd q0 = Eigen::Map<const Eigen::VectorXd>(ini.modal_displacement.data(), n);
+    // ... and inside the geometry the model can represent (SPEC §10).
+    const double reach = tip_reach(beam, q0);
+    if (!(reach <= kReachLimit)) {
+      const std::string what = "the initial shape puts the tip " + computed_number(reach) +
+                               " L from its clamp, farther than a filament of length L can reach";
+      if (p.displacement_node) fail("initial.modal_displacement", *p.displacement_node, what);
+      throw ConfigError(what);
+    }
     const double c0 = gap(beam, *surface, 0.0, q0);
     if (c0 >= 0.0) {
-      const std::string what = "the initial shape already reaches the surface (gap " + format_number(c0) + " m >= 0)";
+      const std::string what = "the initial shape already reaches the surface (gap " + computed_number(c0) + " m >= 0)";
       if (p.displacement_node) fail("initial.modal_displacement", *p.displacement_node, what);
       throw ConfigError(what);
     }
@@ -450,7 +465,7 @@ Config validate(toml::table& root) {
     }
     if (!(theta_star < c.simulation.end_angle_deg)) {
       const toml::node* node = p.end_angle_node ? p.end_angle_node : p.depth_node;
-      const std::string what = "the rigid tip reaches the surface only at " + format_number(theta_star) +
+      const std::string what = "the rigid tip reaches the surface only at " + computed_number(theta_star) +
                                " deg, after the end angle " + format_number(c.simulation.end_angle_deg) + " deg";
       if (node) fail(p.end_angle_node ? "simulation.end_angle_deg" : "surface.depth_fraction", *node, what);
       throw ConfigError(what);

@@ -1,5 +1,7 @@
 #include "rotbeam/beam_model.hpp"
 
+#include <cmath>
+
 namespace rotbeam {
 
 BeamWorkspace::BeamWorkspace(int size)
@@ -14,6 +16,12 @@ void acceleration(const BeamModel& beam, const Eigen::Ref<const Eigen::VectorXd>
   else
     qdd = -ws.psi;
   ws.mass_llt.solveInPlace(qdd);
+}
+
+double tip_reach(const BeamModel& beam, const Eigen::Ref<const Eigen::VectorXd>& q) {
+  const Eigen::Vector2d r = beam.tip_position(q);
+  const double L = beam.beam_length();
+  return std::hypot(r.x() - (beam.tip_radius() - L), r.y()) / L;
 }
 
 }  // namespace rotbeam

@@ -7,7 +7,6 @@
 namespace rotbeam {
 
 namespace {
-constexpr double kReachLimit = 1.01;  // tip-to-clamp distance / L beyond which the geometry is impossible
 // Below this |y_t|/L the model's foreshortening stays close to the exact one (≈ 0.05 L at 0.3 L), so
 // the tip is within reach and the distance is not computed.
 constexpr double kReachCheckRatio = 0.3;
@@ -92,9 +91,7 @@ void PassRecorder::track(double t, const Eigen::VectorXd& q) {
   // An inextensible filament's tip cannot be farther than L from its clamp at (r_h, 0); where the
   // model puts it there, it has left its geometry (only possible at large deflection).
   if (!geometry_warned_ && ratio > kReachCheckRatio) {
-    const Eigen::Vector2d r = system_.beam.tip_position(q);
-    const double L = system_.beam.beam_length();
-    const double reach = std::hypot(r.x() - (system_.beam.tip_radius() - L), r.y()) / L;
+    const double reach = tip_reach(system_.beam, q);
     if (reach > kReachLimit) {
       geometry_warned_ = true;
       std::ostringstream s;
