@@ -2,11 +2,15 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <sys/wait.h>
 #include <unistd.h>
+
+namespace fs = std::filesystem;
 
 namespace {
 struct CliRun {
@@ -15,12 +19,12 @@ struct CliRun {
   std::string err;
 };
 
-CliRun run(const std::string& args) {
+CliRun run(const std::string& args, const std::string& environment = "") {
   // One file per process and call: ctest runs the cases of this file in parallel processes.
   static int calls = 0;
   const std::string err_file = ::testing::TempDir() + "rotbeam_cli_stderr_" + std::to_string(getpid()) + "_" +
                                std::to_string(++calls) + ".txt";
-  const std::string cmd = std::string(ROTBEAM_CLI) + " " + args + " 2>" + err_file;
+  const std::string cmd = environment + " " + std::string(ROTBEAM_CLI) + " " + args + " 2>" + err_file;
   CliRun r{};
   FILE* pipe = popen(cmd.c_str(), "r");
   std::array<char, 4096> buf{};
@@ -222,4 +226,25 @@ TEST(Cli, AnUnwritableStandardOutputIsAFailure) {
     EXPECT_NE(r.err.find("standard output: the results could not be written"), std::string::npos) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   }
+}
+
+// The plotting module cannot start (no such interpreter) or lacks its libraries: exit 1 with one
+// line that says which, never a traceback or the shell's 127.
+TEST(Cli, APlottingModuleThatCannotStartSaysWhyInOneLine) {
+  const std::string png = ::testing::TempDir() + "rotbeam_cli_noplot_" + std::to_string(getpid()) + ".png";
+  const CliRun none = run("modes --plot " + png, "ROTBEAM_PYTHON=/nonexistent/python3");
+  EXPECT_EQ(none.status, 1);
+  EXPECT_EQ(std::count(none.err.begin(), none.err.end(), '\n'), 1) << none.err;
+  EXPECT_NE(none.err.find("cannot run the plotting module: /nonexistent/python3"), std::string::npos) << none.err;
+  // A matplotlib that fails to import, ahead of the real one on the path.
+  const fs::path fake = fs::path(::testing::TempDir()) / ("rotbeam_cli_fake_mpl_" + std::to_string(getpid()));
+  fs::create_directories(fake / "matplotlib");
+  std::ofstream(fake / "matplotlib" / "__init__.py") << "raise ImportError(\"No module named 'matplotlib'\")\n";
+  const CliRun missing =
+      run("modes --plot " + png, "ROTBEAM_PYTHONPATH=" + fake.string() + ":" + (fs::path(ROTBEAM_CLI).parent_path() / "python").string());
+  EXPECT_EQ(missing.status, 1);
+  EXPECT_EQ(std::count(missing.err.begin(), missing.err.end(), '\n'), 1) << missing.err;
+  EXPECT_NE(missing.err.find("needs numpy and matplotlib"), std::string::npos) << missing.err;
+  EXPECT_FALSE(fs::exists(png));
+  fs::remove_all(fake);
 }

@@ -315,3 +315,32 @@ TEST(Reliability, ModesPlotLeavesTheUsersFilesAlone) {
   EXPECT_EQ(s, "mine");
   fs::remove_all(out);
 }
+
+TEST(Reliability, AnInterruptedPlotLeavesNoScratchNorProcess) {
+  // Ctrl-C (SIGINT to `rotbeam` alone, as `kill` sends it) while the plotting module draws the
+  // Campbell diagram: before, rotbeam died at once, leaving its scratch table in TMPDIR and the
+  // Python process running on as an orphan. Now the signal is passed on, both stop, the scratch
+  // file is removed, and the exit is 130 with one line. The signal is sent once the scratch table
+  // exists, while Python (≥ 0.3 s to import matplotlib) starts.
+  const std::string tmp = fresh_dir("plot_interrupt_tmp");
+  fs::create_directories(tmp);
+  const std::string png = tmp + "_camp.png";
+  const std::string err = tmp + ".stderr";
+  const std::string cmd = "sh -c 'TMPDIR=" + tmp + " " + std::string(ROTBEAM_CLI) + " modes --plot " + png + " 2>" + err +
+                          " >/dev/null & pid=$!; i=0; while [ -z \"$(ls " + tmp +
+                          ")\" ] && [ $i -lt 2000 ]; do sleep 0.005; i=$((i+1)); done; sleep 0.05; kill -INT $pid; "
+                          "wait $pid; exit $?'";
+  const int st = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(st));
+  EXPECT_EQ(WEXITSTATUS(st), 130);
+  std::ifstream e(err);
+  const std::string message((std::istreambuf_iterator<char>(e)), {});
+  EXPECT_EQ(std::count(message.begin(), message.end(), '\n'), 1) << message;
+  EXPECT_NE(message.find("interrupted while drawing"), std::string::npos) << message;
+  EXPECT_TRUE(fs::is_empty(tmp)) << "scratch left in " << tmp;
+  EXPECT_FALSE(fs::exists(png));
+  EXPECT_NE(std::system(("pgrep -f -- '--campbel[l] " + png + "' >/dev/null").c_str()), 0) << "the plotting process lives on";
+  fs::remove_all(tmp);
+  fs::remove(err);
+  fs::remove(png);
+}

@@ -17,13 +17,46 @@ import os
 import sys
 from pathlib import Path
 
-import matplotlib
+if __name__ == "__main__":
+    import signal
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+    def _interrupted(signum, frame):
+        # SIGINT/SIGTERM stop the drawing quietly with exit 130 at any point, imports included; the
+        # pictures already written are whole (save_figure) and `rotbeam` says what happened.
+        raise SystemExit(130)
+
+    signal.signal(signal.SIGINT, _interrupted)
+    signal.signal(signal.SIGTERM, _interrupted)
+
+try:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+except ImportError as missing:
+    _HINT = (f"rotbeam.plots needs numpy and matplotlib for {sys.executable} (Debian: apt-get install "
+             f"python3-numpy python3-matplotlib): {missing}")
+    if __name__ == "__main__":
+        print(f"rotbeam: error: {_HINT}", file=sys.stderr)
+        sys.exit(1)
+    raise ImportError(_HINT) from None
 
 DEG = "°"
+
+
+def save_figure(fig, path, dpi=120):
+    """Writes fig to path whole: into a temporary file beside it, renamed into place (an interrupted
+    or failed save leaves no partial picture under the user's name)."""
+    path = Path(path)
+    fmt = path.suffix.lstrip(".").lower() or "png"
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    try:
+        fig.savefig(tmp, dpi=dpi, format=fmt)
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
 
 
 def read_csv(path):
@@ -137,7 +170,7 @@ def plot_run(folder, out):
     ax.legend(fontsize=8)
     fig.tight_layout()
     written.append(out / "normal_force_vs_y.png")
-    fig.savefig(written[-1], dpi=120)
+    save_figure(fig, written[-1])
     plt.close(fig)
 
     # 2. Tip path with close-ups (thesis Figure 13: −X against Y).
@@ -185,7 +218,7 @@ def plot_run(folder, out):
                  color="C3" if summary.get("warnings") else "k")
     fig.tight_layout()
     written.append(out / "tip_path.png")
-    fig.savefig(written[-1], dpi=120)
+    save_figure(fig, written[-1])
     plt.close(fig)
 
     # 3. Modal coordinates.
@@ -203,7 +236,7 @@ def plot_run(folder, out):
     a1.set_title(f"Modal coordinates — {title}", fontsize=10)
     fig.tight_layout()
     written.append(out / "modal_coordinates.png")
-    fig.savefig(written[-1], dpi=120)
+    save_figure(fig, written[-1])
     plt.close(fig)
 
     # 4. Energy audit and hub torque.
@@ -221,7 +254,7 @@ def plot_run(folder, out):
         a.grid(alpha=0.3)
     fig.tight_layout()
     written.append(out / "energy.png")
-    fig.savefig(written[-1], dpi=120)
+    save_figure(fig, written[-1])
     plt.close(fig)
 
     # 5. Impacts.
@@ -242,7 +275,7 @@ def plot_run(folder, out):
         a.grid(alpha=0.3)
     fig.tight_layout()
     written.append(out / "impacts.png")
-    fig.savefig(written[-1], dpi=120)
+    save_figure(fig, written[-1])
     plt.close(fig)
     return written
 
@@ -276,7 +309,7 @@ def plot_sweep(folder, out, cases=False):
                  f"({int((~ok).sum())} without results)", fontsize=10)
     fig.tight_layout()
     written.append(out / "sweep_metrics.png")
-    fig.savefig(written[-1], dpi=120)
+    save_figure(fig, written[-1])
     plt.close(fig)
 
     folders = [f for f, good in zip(table["folder"], ok) if good and (folder / f / "history.csv").exists()]
@@ -294,7 +327,7 @@ def plot_sweep(folder, out, cases=False):
         ax.set_title("Sustained-contact normal force along the surface, every case", fontsize=10)
         fig.tight_layout()
         written.append(out / "sweep_normal_force_vs_y.png")
-        fig.savefig(written[-1], dpi=120)
+        save_figure(fig, written[-1])
         plt.close(fig)
     if cases:
         for f in folders:
@@ -325,7 +358,7 @@ def plot_campbell(csv_path, png_path, orders=(1, 2, 3, 5, 10, 20)):
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     fig.tight_layout()
-    fig.savefig(png_path, dpi=120)
+    save_figure(fig, png_path)
     plt.close(fig)
     return [Path(png_path)]
 

@@ -5,13 +5,11 @@ import json
 import math
 from pathlib import Path
 
-import matplotlib
+# rotbeam.plots first: where numpy or matplotlib is missing it says so in one line.
+from .plots import draw_surface, read_csv, save_figure, surface_of, surface_x
 
-matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-
-from .plots import draw_surface, read_csv, surface_of, surface_x  # noqa: E402
 
 MODELS = ("thesis", "physical")
 MODEL_TITLES = {"thesis": "thesis scheme, force |λ|·|∇C|", "physical": "default model, F_n = −λ"}
@@ -112,7 +110,7 @@ def figure_13(root, fig, path):
                            f"first impact: {'yes' if bounce else 'no'}")
     fig_.suptitle(fig["caption"], fontsize=10)
     fig_.tight_layout()
-    fig_.savefig(path, dpi=110)
+    save_figure(fig_, path, dpi=110)
     plt.close(fig_)
     return verdicts, {}
 
@@ -139,7 +137,7 @@ def force_figure(root, fig, path):
         table[model] = m
     fig_.suptitle(fig["caption"], fontsize=10)
     fig_.tight_layout()
-    fig_.savefig(path, dpi=110)
+    save_figure(fig_, path, dpi=110)
     plt.close(fig_)
     return verdicts, table
 
