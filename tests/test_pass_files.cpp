@@ -84,19 +84,26 @@ TEST(PassFiles, AnUncommittedWriterLeavesNoTemporaries) {
 // A writer that fails after taking the folder's lock (here: an older summary.json that is a
 // non-empty folder and cannot be removed) throws with the reason and leaves no lock file behind.
 TEST(PassFiles, AWriterThatCannotStartLeavesNoLock) {
-  const fs::path dir = fresh_dir("cannot-start");
-  fs::create_directories(dir / "summary.json" / "inside");
-  try {
-    PassFiles files(dir, 5);
-    ADD_FAILURE() << "the writer started over a summary.json it cannot remove";
-  } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("cannot remove the older summary"), std::string::npos) << e.what();
+  // A folder under a name the run writes (empty or not) made the last rename fail after the whole
+  // computation, or was removed as an "older summary": refused before anything is run or touched.
+  for (const std::string name : {"history.csv", "events.csv", "revolutions.csv", "summary.json"}) {
+    for (const bool empty : {true, false}) {
+      const fs::path dir = fresh_dir("cannot-start");
+      fs::create_directories(empty ? dir / name : dir / name / "inside");
+      try {
+        PassFiles files(dir, 5);
+        ADD_FAILURE() << "the writer started over a folder named " << name;
+      } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find(name + ": is a folder"), std::string::npos) << e.what();
+      }
+      EXPECT_FALSE(fs::exists(dir / ".rotbeam.lock"));
+      std::vector<std::string> left;
+      for (const auto& e : fs::directory_iterator(dir)) left.push_back(e.path().filename().string());
+      EXPECT_EQ(left, std::vector<std::string>{name});
+      EXPECT_TRUE(fs::is_directory(dir / name));
+      fs::remove_all(dir);
+    }
   }
-  EXPECT_FALSE(fs::exists(dir / ".rotbeam.lock"));
-  std::vector<std::string> left;
-  for (const auto& e : fs::directory_iterator(dir)) left.push_back(e.path().filename().string());
-  EXPECT_EQ(left, std::vector<std::string>{"summary.json"});
-  fs::remove_all(dir);
 }
 
 TEST(PassFiles, MemoryStaysBoundedWhileManyRowsStream) {

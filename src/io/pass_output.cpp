@@ -234,8 +234,13 @@ PassFiles::PassFiles(const std::filesystem::path& dir, int n, int history_revolu
   prepare_output_folder(dir);
   lock_ = std::make_unique<FolderLock>(dir);  // one run at a time in a folder
   try {
-    // With the lock held no live run writes here: temporaries are a killed run's leftovers.
+    // A folder under one of the names the run writes would make the final rename fail after the
+    // whole computation: refused before it starts.
     std::error_code ec;
+    for (const char* name : {"history.csv", "events.csv", "revolutions.csv", "summary.json"})
+      if (fs::is_directory(fs::symlink_status(dir / name, ec)))
+        throw std::runtime_error((dir / name).string() + ": is a folder, where the run writes its file " + name);
+    // With the lock held no live run writes here: temporaries are a killed run's leftovers.
     for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
       const std::string name = e.path().filename().string();
       for (const char* stem : {"history.csv.tmp.", "events.csv.tmp.", "revolutions.csv.tmp.", "summary.json.tmp."})
