@@ -1,6 +1,7 @@
 // rotbeam._core: the C++ library's jobs for Python, with the GIL released while they compute.
 // Configuration errors raise rotbeam._core.ConfigError (a ValueError) with the CLI's message.
 #include "rotbeam/case.hpp"
+#include "rotbeam/process_memory.hpp"
 #include "rotbeam/impact_output.hpp"
 #include "rotbeam/modal_analysis.hpp"
 #include "rotbeam/pass_output.hpp"
@@ -119,6 +120,7 @@ py::list event_dicts(const PassResult& r) {
 py::tuple run(const std::optional<std::string>& path, const Values& overrides) {
   const Config config = load(path, overrides);
   const Case c = build_case(config);
+  check_history_fits(c, available_memory_bytes(), true);  // the whole history is kept in memory
   const PassResult result = interruptible([&](const StopToken& stop) { return run_case(c, {nullptr, &stop}); });
   const nlohmann::json summary = summary_json(result, config, *c.surface);
   return py::make_tuple(from_json(summary), history_arrays(result, config.beam.modes), event_dicts(result),

@@ -149,3 +149,52 @@ TEST(PassFiles, OneRunAtATimeInAFolderAndLeftoversOfAKilledRunAreRemoved) {
   PassFiles again(dir, 5);  // the lock went with the first writer
   fs::remove_all(dir);
 }
+
+TEST(PassFiles, TheHistoryEstimateMatchesWhatARunWrites) {
+  // estimate_history predicts the rows and bytes of history.csv before a run (the disk check and
+  // the size note depend on it): within −8 % … +10 % of the rows written (contact is sampled at
+  // every step, a little more than the interval gives) and of the bytes (the width of %.17g numbers
+  // varies), over one pass (rigid and flexible starts, another speed and interval) and many
+  // revolutions keeping two. (Where the steps are longer than the interval there are fewer rows:
+  // the estimate is then an upper bound.)
+  const std::vector<std::vector<std::string>> cases = {
+      {},
+      {"hub.speed_rpm=3000", "output.interval_s=2e-6"},
+      {"initial.modal_velocity=[0.1,0,0,0,0]", "simulation.end_angle_deg=30"},
+      {"hub.speed_rpm=300", "beam.modes=3", "simulation.revolutions=3", "output.history_revolutions=2",
+       "beam.damping_ratio=0.02", "output.interval_s=5e-5"},
+  };
+  int k = 0;
+  for (const auto& overrides : cases) {
+    const Config config = load_config(std::nullopt, overrides);
+    const Case c = build_case(config);
+    const HistoryEstimate e = estimate_history(c);
+    ASSERT_TRUE(e.known);
+    const fs::path dir = fresh_dir("estimate" + std::to_string(++k));
+    {
+      PassFiles files(dir, config.beam.modes, config.simulation.history_revolutions);
+      const PassResult r = run_case(c, {&files, nullptr, {}});
+      ASSERT_FALSE(r.failure) << r.failure->message;
+      files.commit(r, config, *c.surface);
+    }
+    std::ifstream in(dir / "history.csv");
+    const double rows = std::count(std::istreambuf_iterator<char>(in), {}, '\n') - 1.0;
+    const double bytes = static_cast<double>(fs::file_size(dir / "history.csv"));
+    EXPECT_GT(e.rows / rows, 0.92) << k << ": estimated " << e.rows << " rows, wrote " << rows;
+    EXPECT_LT(e.rows / rows, 1.10) << k << ": estimated " << e.rows << " rows, wrote " << rows;
+    EXPECT_GT(e.csv_bytes / bytes, 0.92) << k << ": estimated " << e.csv_bytes << " bytes, wrote " << bytes;
+    EXPECT_LT(e.csv_bytes / bytes, 1.10) << k << ": estimated " << e.csv_bytes << " bytes, wrote " << bytes;
+    fs::remove_all(dir);
+  }
+  // Unknown with every step sampled; refused (naming the key) where it cannot fit.
+  EXPECT_FALSE(estimate_history(build_case(load_config(std::nullopt, {"output.interval_s=0"}))).known);
+  const Case slow = build_case(load_config(std::nullopt, {"hub.speed_rpm=0.5"}));
+  try {
+    check_history_fits(slow, 1e8, false);
+    ADD_FAILURE() << "a 1.4 GB history was let onto 100 MB";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("output.interval_s = 1e-05: the history would hold", 0), 0u) << e.what();
+  }
+  EXPECT_NO_THROW(check_history_fits(slow, 1e10, false));
+  EXPECT_NO_THROW(check_history_fits(slow, 0.0, true));  // unknown: no check
+}

@@ -29,6 +29,26 @@ Case build_case(const Config& config);
 /// simulation.until_steady, to its periodic steady state (run_to_steady_state, steady_state.hpp).
 PassResult run_case(const Case& c, const PassControl& control = {});
 
+/// What a run of the case will record before it runs: the history rows its sampling interval
+/// gives over the recorded span (one pass: from the flexible start to the end angle; many
+/// revolutions: the last output.history_revolutions of them), their size in history.csv and in
+/// memory (PassResult plus the Python arrays). An upper bound where the run may stop earlier
+/// (simulation.until_steady); unknown (known = false) with output.interval_s = 0, every step.
+struct HistoryEstimate {
+  bool known = false;
+  bool upper_bound = false;  // the run may end earlier
+  double rows = 0, csv_bytes = 0, memory_bytes = 0;
+};
+HistoryEstimate estimate_history(const Case& c);
+
+/// Throws ConfigError naming output.interval_s when the history a run of c certainly records would
+/// not fit in `available_bytes` (of disk for history.csv when `in_memory` is false, of memory
+/// otherwise); 0 available means unknown (no check). Returns the estimate.
+HistoryEstimate check_history_fits(const Case& c, double available_bytes, bool in_memory);
+
+/// "4.2 GB", "310 MB", "12 kB": a size for messages.
+std::string size_text(double bytes);
+
 /// Runs the case to its first impact (the thesis's RK5 with simulation.free_step_s).
 FirstImpactResult run_first_impact(const Case& c, const StopToken* stop = nullptr);
 

@@ -1,7 +1,11 @@
 #include "rotbeam/case.hpp"
 #include "rotbeam/steady_state.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <stdexcept>
+#include <string>
 
 namespace rotbeam {
 
@@ -33,6 +37,63 @@ PassResult run_case(const Case& c, const PassControl& control) {
 
 FirstImpactResult run_first_impact(const Case& c, const StopToken* stop) {
   return first_impact(c.system(), c.initial, c.options.end_angle_deg, c.options.free_step_s, stop);
+}
+
+HistoryEstimate estimate_history(const Case& c) {
+  HistoryEstimate e;
+  const PassOptions& o = c.options;
+  if (!(o.output_interval_s > 0.0)) return e;
+  const BeamModel& beam = *c.beam;
+  double span_s;
+  if (o.revolutions > 0) {
+    const int kept = o.history_revolutions > 0 ? std::min(o.history_revolutions, o.revolutions) : o.revolutions;
+    span_s = kept * 2.0 * M_PI / beam.hub_motion().omega;
+    e.upper_bound = o.until_steady;
+  } else {
+    double start_s = 0.0;
+    if (c.initial.rigid_start) {
+      const double theta_star = c.surface->first_contact_angle(beam.tip_radius(), beam.theta(0.0));
+      if (std::isfinite(theta_star)) start_s = beam.time_at(theta_star);
+    }
+    span_s = std::max(0.0, beam.time_at(o.end_angle_deg * M_PI / 180.0) - start_s);
+  }
+  const double n = beam.modes();
+  e.known = true;
+  e.rows = span_s / o.output_interval_s + 1.0;
+  // Measured: %.17g numbers average about 18 characters with their comma (13 + 2n columns).
+  e.csv_bytes = e.rows * 18.1 * (13.0 + 2.0 * n);
+  // A HistoryRow with its two vectors' heap blocks, and the arrays handed to Python.
+  e.memory_bytes = e.rows * (sizeof(HistoryRow) + 2.0 * (8.0 * n + 32.0) + 8.0 * (13.0 + 2.0 * n));
+  return e;
+}
+
+std::string size_text(double bytes) {
+  static const char* const units[] = {"B", "kB", "MB", "GB", "TB", "PB", "EB"};
+  int u = 0;
+  while (bytes >= 1000.0 && u < 6) {
+    bytes /= 1000.0;
+    ++u;
+  }
+  char buf[32];
+  std::snprintf(buf, sizeof buf, bytes < 10.0 && u > 0 ? "%.1f %s" : "%.0f %s", bytes, units[u]);
+  return buf;
+}
+
+HistoryEstimate check_history_fits(const Case& c, double available_bytes, bool in_memory) {
+  const HistoryEstimate e = estimate_history(c);
+  const double need = in_memory ? e.memory_bytes : e.csv_bytes;
+  if (e.known && !e.upper_bound && available_bytes > 0 && need > available_bytes) {
+    char rows[32];
+    std::snprintf(rows, sizeof rows, "%.3g", e.rows);
+    char interval[32];
+    std::snprintf(interval, sizeof interval, "%g", c.options.output_interval_s);
+    throw ConfigError(std::string("output.interval_s = ") + interval + ": the history would hold " + rows + " rows, " +
+                      (in_memory ? "about " + size_text(need) + " of memory, more than the " + size_text(available_bytes) +
+                                       " available (run it with `rotbeam run -o DIR`, which streams to disk, or sample less often)"
+                                 : "about " + size_text(need) + " in history.csv, more than the " +
+                                       size_text(available_bytes) + " free there (sample less often)"));
+  }
+  return e;
 }
 
 }  // namespace rotbeam
