@@ -130,7 +130,7 @@ py::tuple run(const std::optional<std::string>& path, const Values& overrides) {
 py::object impact(const std::optional<std::string>& path, const Values& overrides) {
   const Config config = load(path, overrides);
   const Case c = build_case(config);
-  const FirstImpactResult r = interruptible([&](const StopToken& stop) { return run_first_impact(c, &stop); });
+  const FirstImpactResult r = interruptible([&](const StopToken& stop) { return run_first_impact(c, {nullptr, &stop}); });
   if (r.failure)
     throw std::runtime_error(std::string("numerical failure (") + failure_name(r.failure->kind) + ") at t = " +
                              std::to_string(r.failure->t) + " s before the first impact: " + r.failure->message);

@@ -3,6 +3,7 @@
 #include "rotbeam/rigid_contact.hpp"
 #include "rotbeam/pass.hpp"
 #include "rotbeam/dynamics.hpp"
+#include "rotbeam/first_impact.hpp"
 #include "rotbeam/plane.hpp"
 
 #include <array>
@@ -225,6 +226,23 @@ TEST(Reliability, ProgressCountsFromTheFlexibleStart) {
   const double done = (first.theta_deg - first.start_deg) / (first.end_deg - first.start_deg);
   EXPECT_GE(done, 0.0);
   EXPECT_LT(done, 0.5) << "θ = " << first.theta_deg << "° from " << first.start_deg << "°";
+  // The search for the first impact from a flexible start reports too (RK5 steps of 1 µs over
+  // ≈ 82°: about 25 000 steps), with θ growing from θ0.
+  InitialConditions flexible;
+  flexible.rigid_start = false;
+  flexible.q0 = Eigen::VectorXd::Zero(model.n);
+  flexible.qd0 = Eigen::VectorXd::Zero(model.n);
+  flexible.qd0[0] = 0.1;
+  std::vector<PassProgress> searched;
+  PassControl search_control;
+  search_control.on_progress = [&](const PassProgress& pr) { searched.push_back(pr); };
+  const FirstImpactResult f = first_impact({model, plane, {}}, flexible, 90.0, 1e-6, search_control);
+  ASSERT_TRUE(f.found);
+  ASSERT_FALSE(searched.empty());
+  EXPECT_DOUBLE_EQ(searched.front().start_deg, -90.0);
+  EXPECT_GT(searched.front().theta_deg, -90.0);
+  EXPECT_LT(searched.back().theta_deg, f.theta * 180.0 / M_PI);
+  EXPECT_GT(searched.front().steps, 0);
 }
 
 TEST(Reliability, AStepThatCannotAdvanceIsAnUnderflow) {

@@ -15,12 +15,17 @@ namespace {
 struct ImpactOptions {
   CaseOptions case_options;
   bool json = false;
+  bool quiet = false;
 };
 
 int run_impact(const ImpactOptions& o) {
   const Config config = o.case_options.load();
   install_interrupt_handlers();
-  const FirstImpactResult r = run_first_impact(build_case(config), &interrupt_token());
+  FirstImpactResult r;
+  {
+    PassProgressLine progress(o.quiet);
+    r = run_first_impact(build_case(config), {nullptr, &interrupt_token(), progress.callback()});
+  }
   if (r.failure && r.failure->kind == FailureKind::interrupted) {
     print_error("interrupted at t = " + number_text(r.failure->t) + " s, θ = " +
                 number_text(r.failure->theta * 180.0 / M_PI) + " deg, before the first impact");
@@ -77,6 +82,7 @@ Command add_impact_command(CLI::App& app) {
   opts->case_options.add_to(*sub);
   sub->add_flag("--json", opts->json,
                 "Print a JSON object (t_s, theta_deg, y_tip_m, vx_before_m_s, vx_after_m_s, delta_vx_m_s, restitution, …)");
+  sub->add_flag("--quiet", opts->quiet, "No progress line on stderr (shown otherwise on a terminal for searches over a second)");
   return [opts] { return run_impact(*opts); };
 }
 

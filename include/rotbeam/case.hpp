@@ -49,7 +49,8 @@ HistoryEstimate check_history_fits(const Case& c, double available_bytes, bool i
 /// "4.2 GB", "310 MB", "12 kB": a size for messages.
 std::string size_text(double bytes);
 
-/// Runs the case to its first impact (the thesis's RK5 with simulation.free_step_s).
-FirstImpactResult run_first_impact(const Case& c, const StopToken* stop = nullptr);
+/// Runs the case to its first impact (the thesis's RK5 with simulation.free_step_s; control: the
+/// stop token and progress, as for a pass).
+FirstImpactResult run_first_impact(const Case& c, const PassControl& control = {});
 
 }  // namespace rotbeam

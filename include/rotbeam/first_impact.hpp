@@ -22,9 +22,10 @@ struct FirstImpactResult {
 
 /// Runs to the first impact (up to `end_angle_deg`) with free-flight step `step_s` [s] and applies
 /// system.law.impact. Throws std::invalid_argument when the initial shape already touches; a numerical
-/// breakdown, or a stop requested on `stop` (checked at every step), is returned in `failure`
-/// (found = false; kind `interrupted` for a stop).
+/// breakdown, or a stop requested on control.stop (checked at every step), is returned in `failure`
+/// (found = false; kind `interrupted` for a stop). control.on_progress is called as for a pass
+/// (θ from θ0 toward the end angle); control.sink is not used (the search records no history).
 FirstImpactResult first_impact(const System& system, const InitialConditions& initial, double end_angle_deg,
-                               double step_s, const StopToken* stop = nullptr);
+                               double step_s, const PassControl& control = {});
 
 }  // namespace rotbeam

@@ -1,12 +1,15 @@
 #include "rotbeam/first_impact.hpp"
 
+#include "rotbeam/detail/progress_clock.hpp"
+
 #include <cmath>
 #include <stdexcept>
 
 namespace rotbeam {
 
 FirstImpactResult first_impact(const System& system, const InitialConditions& initial, double end_angle_deg,
-                               double step_s, const StopToken* stop) {
+                               double step_s, const PassControl& control) {
+  const StopToken* stop = control.stop;
   const BeamModel& beam = system.beam;
   const int n = beam.modes();
   const double t_end = beam.time_at(end_angle_deg * M_PI / 180.0);
@@ -34,7 +37,17 @@ FirstImpactResult first_impact(const System& system, const InitialConditions& in
     stepper->begin_free(s, FreeStart::pass_start);
     r.min_gap = gap(beam, system.surface, s.t, s.q);
     bool touched = false;
+    detail::ProgressClock clock;
     while (s.t < t_end && !touched) {
+      if (control.on_progress && clock.due()) {
+        PassProgress p;
+        p.theta_deg = beam.theta(s.t) * 180.0 / M_PI;
+        p.start_deg = beam.theta(0.0) * 180.0 / M_PI;
+        p.end_deg = end_angle_deg;
+        p.elapsed_s = clock.elapsed_s();
+        p.steps = stepper->statistics().steps;
+        control.on_progress(p);
+      }
       if (stop && stop->stop_requested()) {
         r.failure = NumericalFailure{FailureKind::interrupted, s.t, beam.theta(s.t),
                                      "the search for the first impact was interrupted"};

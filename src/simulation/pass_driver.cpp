@@ -35,20 +35,15 @@ PassDriver::PassDriver(const System& system, const PassOptions& options, Stepper
     t_end_ = options.revolutions * period_;
     next_section_ = options.revolutions > 1 ? period_ : INFINITY;
   }
-  wall0_ = next_report_ = std::chrono::steady_clock::now();
 }
 
 void PassDriver::report_progress() {
-  // The clock is read every 256 accepted points, the callback called at most four times a second.
-  if (!on_progress_ || (++progress_count_ & 255) != 0) return;
-  const auto now = std::chrono::steady_clock::now();
-  if (now < next_report_) return;
-  next_report_ = now + std::chrono::milliseconds(250);
+  if (!on_progress_ || !progress_clock_.due()) return;
   PassProgress p;
   p.theta_deg = system_.beam.theta(state_.t) * 180.0 / M_PI;
   p.start_deg = system_.beam.theta(flexible_from_t_) * 180.0 / M_PI;
   p.end_deg = options_.end_angle_deg;
-  p.elapsed_s = std::chrono::duration<double>(now - wall0_).count();
+  p.elapsed_s = progress_clock_.elapsed_s();
   p.steps = stepper_.statistics().steps;
   p.revolution = rec_.revolution();
   p.revolutions = options_.revolutions;

@@ -6,9 +6,9 @@
 
 #include "pass_recorder.hpp"
 
+#include "rotbeam/detail/progress_clock.hpp"
 #include "rotbeam/pass.hpp"
 
-#include <chrono>
 #include <cmath>
 
 namespace rotbeam {
@@ -58,9 +58,8 @@ private:
   bool done_ = false;
   int instant_transitions_ = 0;  // phase changes without time advancing (chatter guard)
   std::function<void(const PassProgress&)> on_progress_;
-  std::chrono::steady_clock::time_point wall0_, next_report_;
+  detail::ProgressClock progress_clock_;
   double flexible_from_t_ = 0.0;  // where the integration of the flexible motion began [s]
-  long progress_count_ = 0;
 };
 
 }  // namespace rotbeam

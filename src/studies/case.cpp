@@ -35,8 +35,8 @@ PassResult run_case(const Case& c, const PassControl& control) {
   return run_to_steady_state(c.system(), c.initial, c.options, control);
 }
 
-FirstImpactResult run_first_impact(const Case& c, const StopToken* stop) {
-  return first_impact(c.system(), c.initial, c.options.end_angle_deg, c.options.free_step_s, stop);
+FirstImpactResult run_first_impact(const Case& c, const PassControl& control) {
+  return first_impact(c.system(), c.initial, c.options.end_angle_deg, c.options.free_step_s, control);
 }
 
 HistoryEstimate estimate_history(const Case& c) {
