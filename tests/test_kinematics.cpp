@@ -4,6 +4,7 @@
 #include "rotbeam/kinematics.hpp"
 #include "rotbeam/plane.hpp"
 
+#include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <gtest/gtest.h>
 
 using namespace rotbeam;
@@ -104,4 +105,51 @@ TEST(Kinematics, StraightBeamTipFollowsTheHub) {
   EXPECT_NEAR(k.Y, R * std::sin(th), 1e-16);
   EXPECT_NEAR(k.VX, -model.omega * R * std::sin(th), 1e-14);
   EXPECT_NEAR(k.VY, model.omega * R * std::cos(th), 1e-14);
+}
+
+TEST(Kinematics, TheDrawnShapeIsTheModelsCentreline) {
+  // BeamModel::shape (the pictures' and animations' filament) against independent routes: at ξ = 1
+  // the model's tip_position (1e-15 m: the same integral by another rule), at ξ = 0 the clamp
+  // (r_h, 0), and inside y = Σ q_i S_i(ξ) with the foreshortening (1/2L)∫₀^ξ (Σ q_i S_i')² by
+  // adaptive Gauss–Kronrod (1e-14 m). Many points in one call equal one point per call.
+  using GK = boost::math::quadrature::gauss_kronrod<double, 31>;
+  for (int n : {3, 5, 12}) {
+    BeamParameters p;
+    p.modes = n;
+    const ForeshorteningBeam model = make_beam(p);
+    const ModalBasis& b = model.integrals->basis;
+    Eigen::VectorXd q(n);
+    for (int i = 0; i < n; ++i) q[i] = 4e-3 * std::cos(1.3 * i + 0.4) / (1 + i);
+    Eigen::VectorXd xi = Eigen::VectorXd::LinSpaced(41, 0.0, 1.0);
+    Eigen::MatrixXd r(xi.size(), 2);
+    model.shape(q, xi, r);
+    const Eigen::Vector2d tip = model.tip_position(q);
+    EXPECT_NEAR(r(40, 0), tip.x(), 1e-15) << n;
+    EXPECT_NEAR(r(40, 1), tip.y(), 1e-15) << n;
+    EXPECT_DOUBLE_EQ(r(0, 0), model.hub_radius);
+    EXPECT_NEAR(r(0, 1), 0.0, 1e-17);  // S_i(0) = 0 up to rounding
+    for (int k : {7, 20, 33}) {
+      const double x = xi[k];
+      double y = 0.0;
+      for (int i = 0; i < n; ++i) y += q[i] * b.shape(i, x, 0);
+      const double u = GK::integrate(
+                           [&](double s) {
+                             double v = 0.0;
+                             for (int i = 0; i < n; ++i) v += q[i] * b.shape(i, s, 1);
+                             return v * v;
+                           },
+                           0.0, x, 12, 1e-15) /
+                       (2.0 * model.length);
+      EXPECT_NEAR(r(k, 1), y, 1e-14) << n << " ξ = " << x;
+      EXPECT_NEAR(r(k, 0), model.hub_radius + x * model.length - u, 1e-14) << n << " ξ = " << x;
+      Eigen::MatrixXd one(1, 2);
+      model.shape(q, xi.segment(k, 1), one);
+      EXPECT_NEAR(one(0, 0), r(k, 0), 1e-15);
+      EXPECT_NEAR(one(0, 1), r(k, 1), 1e-15);
+    }
+    Eigen::VectorXd backwards(2);
+    backwards << 0.5, 0.2;
+    Eigen::MatrixXd two(2, 2);
+    EXPECT_THROW(model.shape(q, backwards, two), std::invalid_argument);
+  }
 }

@@ -90,6 +90,11 @@ public:
                    HubFrameTip& out) const = 0;
   /// The tip position (x, y) in the hub frame [m] (cheap: for event functions).
   virtual Eigen::Vector2d tip_position(const Eigen::Ref<const Eigen::VectorXd>& q) const = 0;
+  /// The filament's centreline in the hub frame [m] at the material points s = ξL (xi: ascending in
+  /// [0, 1]) into positions (xi.size() × 2: x, y): for pictures and animations. At ξ = 1 it equals
+  /// tip_position(q). Throws std::invalid_argument for points outside [0, 1] or out of order.
+  virtual void shape(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& xi,
+                     Eigen::Ref<Eigen::MatrixXd> positions) const = 0;
   /// The tip's deflection across the undeformed filament, |y_t| [m] (the validity measure |y_t|/L).
   virtual double tip_deflection(const Eigen::Ref<const Eigen::VectorXd>& q) const = 0;
   /// Every energy term at (q, q̇). Overwrites the workspace.

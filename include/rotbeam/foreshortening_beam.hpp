@@ -56,6 +56,11 @@ public:
   void tip(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qd,
            HubFrameTip& out) const override;
   Eigen::Vector2d tip_position(const Eigen::Ref<const Eigen::VectorXd>& q) const override;
+  /// y(ξ) = Σ q_i S_i(ξ), x(ξ) = r_h + ξL − (1/2L)∫₀^ξ (Σ q_i S_i')² dη (SPEC §2's foreshortening
+  /// at every point; at ξ = 1 the tip), the integral by 8-point Gauss–Legendre on panels of at most
+  /// 1/(n + 2).
+  void shape(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& xi,
+             Eigen::Ref<Eigen::MatrixXd> positions) const override;
   /// |y_t| = |S(1)ᵀq|.
   double tip_deflection(const Eigen::Ref<const Eigen::VectorXd>& q) const override;
   EnergyTerms energy(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qd,

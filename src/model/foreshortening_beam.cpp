@@ -3,6 +3,7 @@
 #include "rotbeam/dynamics.hpp"
 #include "rotbeam/energy.hpp"
 #include "rotbeam/modal_analysis.hpp"
+#include "rotbeam/quadrature.hpp"
 #include "rotbeam/detail/quadratic_form.hpp"
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace rotbeam {
 
@@ -53,6 +55,41 @@ void ForeshorteningBeam::tip(const Eigen::Ref<const Eigen::VectorXd>& q, const E
 Eigen::Vector2d ForeshorteningBeam::tip_position(const Eigen::Ref<const Eigen::VectorXd>& q) const {
   const ModalIntegrals& mi = *integrals;
   return {hub_radius + length - detail::quadratic_form(mi.isp_tip, q) / (2.0 * length), mi.s_tip.dot(q)};
+}
+
+void ForeshorteningBeam::shape(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& xi,
+                               Eigen::Ref<Eigen::MatrixXd> positions) const {
+  if (positions.rows() != xi.size() || positions.cols() != 2)
+    throw std::invalid_argument("shape: positions must be " + std::to_string(xi.size()) + " x 2");
+  const ModalBasis& basis = integrals->basis;
+  const QuadratureRule& gauss = gauss_legendre_reference(8);
+  const double max_panel = 1.0 / (n + 2);
+  std::vector<double> s(n), ds(n);
+  const auto slope = [&](double eta) {  // Σ q_i S_i'(η)
+    basis.evaluate(eta, nullptr, ds.data(), nullptr);
+    double v = 0.0;
+    for (int i = 0; i < n; ++i) v += q[i] * ds[i];
+    return v;
+  };
+  double at = 0.0, integral = 0.0;  // ∫₀^at (Σ q_i S_i')² dη
+  for (Eigen::Index k = 0; k < xi.size(); ++k) {
+    if (!(xi[k] >= at && xi[k] <= 1.0))
+      throw std::invalid_argument("shape: the points ξ must ascend within [0, 1] (ξ = " + std::to_string(xi[k]) + ")");
+    const int panels = static_cast<int>(std::ceil((xi[k] - at) / max_panel));
+    for (int p = 0; p < panels; ++p) {
+      const double a = at + (xi[k] - at) * p / panels, b = at + (xi[k] - at) * (p + 1) / panels;
+      for (std::size_t g = 0; g < gauss.nodes.size(); ++g) {
+        const double v = slope(0.5 * (a + b) + 0.5 * (b - a) * gauss.nodes[g]);
+        integral += 0.5 * (b - a) * gauss.weights[g] * v * v;
+      }
+    }
+    at = xi[k];
+    basis.evaluate(at, s.data(), nullptr, nullptr);
+    double y = 0.0;
+    for (int i = 0; i < n; ++i) y += q[i] * s[i];
+    positions(k, 0) = hub_radius + at * length - integral / (2.0 * length);
+    positions(k, 1) = y;
+  }
 }
 
 double ForeshorteningBeam::tip_deflection(const Eigen::Ref<const Eigen::VectorXd>& q) const {
