@@ -159,6 +159,33 @@ py::tuple modes(const std::optional<std::string>& path, const Values& overrides,
   return py::make_tuple(speeds, freq);
 }
 
+// The filament's centreline in the hub frame for each row of q (frames × n) at the points xi
+// (ascending in [0, 1]): an array frames × points × 2 [m] (BeamModel::shape).
+py::array_t<double> filament_shape(const std::optional<std::string>& path, const Values& overrides,
+                                   const py::array_t<double, py::array::c_style | py::array::forcecast>& q,
+                                   const py::array_t<double, py::array::c_style | py::array::forcecast>& xi) {
+  const Config config = load(path, overrides);
+  const Case c = build_case(config);
+  const int n = c.beam->modes();
+  if (q.ndim() != 2 || q.shape(1) != n)
+    throw ConfigError("q: must be an array of frames x " + std::to_string(n) + " modal coordinates");
+  if (xi.ndim() != 1 || xi.shape(0) < 1) throw ConfigError("xi: must be a non-empty 1-D array of points in [0, 1]");
+  const py::ssize_t frames = q.shape(0), points = xi.shape(0);
+  py::array_t<double> out({frames, points, static_cast<py::ssize_t>(2)});
+  const Eigen::Map<const Eigen::VectorXd> x(xi.data(), points);
+  auto o = out.mutable_unchecked<3>();
+  Eigen::MatrixXd r(points, 2);
+  for (py::ssize_t f = 0; f < frames; ++f) {
+    const Eigen::Map<const Eigen::VectorXd> qf(q.data(f, 0), n);
+    c.beam->shape(qf, x, r);
+    for (py::ssize_t k = 0; k < points; ++k) {
+      o(f, k, 0) = r(k, 0);
+      o(f, k, 1) = r(k, 1);
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -179,5 +206,7 @@ PYBIND11_MODULE(_core, m) {
         "The first impact as a dict (the fields of `rotbeam impact --json`), or None without impact.");
   m.def("modes", &modes, py::arg("path"), py::arg("overrides"), py::arg("speeds_rpm"),
         "Natural frequencies: (speeds_rpm array, frequencies_hz 2-D array); None means the default speeds.");
+  m.def("filament_shape", &filament_shape, py::arg("path"), py::arg("overrides"), py::arg("q"), py::arg("xi"),
+        "The centreline in the hub frame [m] for each row of q (frames x n) at the points xi: frames x points x 2.");
   m.def("config_keys", &config_keys, "Every configuration key, 'section.key'.");
 }

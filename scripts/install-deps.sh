@@ -6,7 +6,7 @@ packages=(
   cmake g++ make
   libeigen3-dev libboost-dev libtomlplusplus-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libbenchmark-dev
-  pybind11-dev python3-pybind11 python3-dev python3-numpy python3-matplotlib python3-pytest
+  pybind11-dev python3-pybind11 python3-dev python3-numpy python3-matplotlib python3-pil python3-pytest
   clang libclang-rt-dev
 )
 

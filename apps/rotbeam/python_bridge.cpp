@@ -54,7 +54,7 @@ class ForwardInterrupts {
 
 }  // namespace
 
-int run_python_plots(const std::vector<std::string>& args) {
+int run_python_module(const std::string& module, const std::vector<std::string>& args) {
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   std::string python_path;
@@ -68,7 +68,7 @@ int run_python_plots(const std::vector<std::string>& args) {
   const char* python = std::getenv("ROTBEAM_PYTHON") ? std::getenv("ROTBEAM_PYTHON") : ROTBEAM_PYTHON_EXECUTABLE;
   std::string joined = python_path;
   if (const char* existing = std::getenv("PYTHONPATH")) joined += std::string(":") + existing;
-  std::vector<std::string> argv_storage = {python, "-m", "rotbeam.plots"};
+  std::vector<std::string> argv_storage = {python, "-m", module};
   argv_storage.insert(argv_storage.end(), args.begin(), args.end());
   std::vector<char*> argv;
   for (std::string& a : argv_storage) argv.push_back(a.data());
@@ -93,12 +93,12 @@ int run_python_plots(const std::vector<std::string>& args) {
   }
   // An interrupt that arrived after the module finished its work changes nothing.
   if (g_forwarded != 0 && !(WIFEXITED(status) && WEXITSTATUS(status) == 0)) {
-    print_error("interrupted while drawing: the pictures written so far are whole, the rest are missing");
+    print_error("interrupted while drawing: the files written so far are whole, the rest are missing");
     return kInterrupted;
   }
   if (pid < 0 || (WIFEXITED(status) && WEXITSTATUS(status) == 127)) {
-    print_error(std::string("cannot run the plotting module: ") + python +
-                " -m rotbeam.plots (needs Python 3 with numpy and matplotlib, and the rotbeam package; "
+    print_error(std::string("cannot run the plotting module: ") + python + " -m " + module +
+                " (needs Python 3 with numpy and matplotlib, and the rotbeam package; "
                 "set ROTBEAM_PYTHON / ROTBEAM_PYTHONPATH)");
     return kRuntimeFailure;
   }

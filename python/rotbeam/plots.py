@@ -18,15 +18,9 @@ import sys
 from pathlib import Path
 
 if __name__ == "__main__":
-    import signal
+    from rotbeam._interrupt import stop_quietly_on_interrupt
 
-    def _interrupted(signum, frame):
-        # SIGINT/SIGTERM stop the drawing quietly with exit 130 at any point, imports included; the
-        # pictures already written are whole (save_figure) and `rotbeam` says what happened.
-        raise SystemExit(130)
-
-    signal.signal(signal.SIGINT, _interrupted)
-    signal.signal(signal.SIGTERM, _interrupted)
+    stop_quietly_on_interrupt()
 
 try:
     import matplotlib
@@ -57,6 +51,12 @@ def save_figure(fig, path, dpi=120):
     finally:
         if tmp.exists():
             tmp.unlink()
+
+
+def animate(folder, output=None, **options):
+    """The animation of a run folder (rotbeam.animate.animate; its options): the paths written."""
+    from .animate import animate as draw_animation
+    return draw_animation(folder, output, **options)
 
 
 def read_csv(path):

@@ -1,0 +1,54 @@
+// `rotbeam animate DIR`: an animation of a run (Python's rotbeam.animate): the filament's shape
+// through contact, as GIF and, where ffmpeg is installed, MP4.
+#include "commands.hpp"
+#include "common.hpp"
+#include "python_bridge.hpp"
+
+#include <filesystem>
+#include <optional>
+
+namespace rotbeam::cli {
+
+namespace {
+struct AnimateOptions {
+  std::string folder, output, window;
+  std::optional<int> frames;
+  std::optional<double> frames_per_degree, zoom_mm;
+  double magnify = 1.0, fps = 20.0;
+};
+}  // namespace
+
+Command add_animate_command(CLI::App& app) {
+  auto opts = std::make_shared<AnimateOptions>();
+  CLI::App* sub = app.add_subcommand("animate", "An animation of a run: the filament bending through contact (GIF; MP4 with ffmpeg)");
+  sub->add_option("folder", opts->folder, "A folder written by `rotbeam run`")->required();
+  sub->add_option("-o,--output", opts->output,
+                  "A .gif or .mp4 file (default: DIR/animation.gif, and DIR/animation.mp4 where ffmpeg is installed)");
+  CLI::Option* frames = sub->add_option("--frames", opts->frames, "Number of frames (default 240)")->check(CLI::Range(2, 20000));
+  sub->add_option("--frames-per-degree", opts->frames_per_degree, "Frames per degree of hub angle instead")
+      ->check(CLI::PositiveNumber)
+      ->excludes(frames);
+  sub->add_option("--window", opts->window,
+                  "FROM:TO, the hub angles shown [deg] (default: the contact region with a margin; the last revolution "
+                  "of a run over many)");
+  sub->add_option("--zoom", opts->zoom_mm, "Half-width of the view around the tip [mm] (default: three surface depths, at least 2.5)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--magnify", opts->magnify, "Draw the deflection this many times (default 1: to scale)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--fps", opts->fps, "Frames per second of the file (default 20)")->check(CLI::Range(0.1, 100.0));
+  return [opts] {
+    namespace fs = std::filesystem;
+    if (!fs::exists(fs::path(opts->folder) / "summary.json"))
+      throw ConfigError(opts->folder + ": not a run folder (no summary.json)");
+    std::vector<std::string> args = {opts->folder};
+    if (!opts->output.empty()) args.insert(args.end(), {"-o", opts->output});
+    if (opts->frames) args.insert(args.end(), {"--frames", std::to_string(*opts->frames)});
+    if (opts->frames_per_degree) args.insert(args.end(), {"--frames-per-degree", number_text(*opts->frames_per_degree)});
+    if (!opts->window.empty()) args.push_back("--window=" + opts->window);
+    if (opts->zoom_mm) args.insert(args.end(), {"--zoom", number_text(*opts->zoom_mm)});
+    args.insert(args.end(), {"--magnify", number_text(opts->magnify), "--fps", number_text(opts->fps)});
+    return run_python_module("rotbeam.animate", args);
+  };
+}
+
+}  // namespace rotbeam::cli
