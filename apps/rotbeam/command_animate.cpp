@@ -24,7 +24,7 @@ Command add_animate_command(CLI::App& app) {
   sub->add_option("folder", opts->folder, "A folder written by `rotbeam run`")->required();
   sub->add_option("-o,--output", opts->output,
                   "A .gif or .mp4 file (default: DIR/animation.gif, and DIR/animation.mp4 where ffmpeg is installed)");
-  CLI::Option* frames = sub->add_option("--frames", opts->frames, "Number of frames (default 240)")->check(CLI::Range(2, 20000));
+  CLI::Option* frames = sub->add_option("--frames", opts->frames, "Number of frames (default 240, at most 2000)")->check(CLI::Range(2, 2000));
   sub->add_option("--frames-per-degree", opts->frames_per_degree, "Frames per degree of hub angle instead")
       ->check(CLI::PositiveNumber)
       ->excludes(frames);

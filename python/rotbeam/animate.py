@@ -39,6 +39,8 @@ EVENT_WEIGHT = 40.0
 CONTACT_WEIGHT = 8.0
 EVENT_HALF_WIDTH_DEG = 0.4
 EVENT_KINDS = ("impact", "contact_start", "contact_end")
+#: A GIF holds its frames in memory until it is written (about 0.5 MB each at the default size).
+MAX_FRAMES = 2000
 
 
 def _shape_overrides(summary):
@@ -187,8 +189,8 @@ def animate(folder, output=None, frames=None, frames_per_degree=None, window=Non
             raise ValueError(f"frames per degree = {frames_per_degree:g}: must be positive")
         frames = math.ceil(frames_per_degree * (hi - lo))
     frames = 240 if frames is None else int(frames)
-    if not 2 <= frames <= 20000:
-        raise ValueError(f"frames = {frames}: must be in 2 … 20000")
+    if not 2 <= frames <= MAX_FRAMES:
+        raise ValueError(f"frames = {frames}: must be in 2 … {MAX_FRAMES}")
     rows = frame_rows(history, events, (lo, hi), frames)
     if len(rows) < 0.9 * frames and note is not None:
         note(f"{len(rows)} frames of the {frames} asked for: the history holds no more distinct states in "
@@ -356,7 +358,13 @@ class _GifSink:
         self.frames = []
 
     def add(self, rgba):
-        self.frames.append(Image.fromarray(rgba[:, :, :3]).quantize(colors=64, method=Image.Quantize.MEDIANCUT))
+        # One palette for every frame, from the first (the figure's few colours are all in it):
+        # 30 times faster than a palette per frame, and no flicker between frames.
+        image = Image.fromarray(rgba[:, :, :3])
+        if not self.frames:
+            self.frames.append(image.quantize(colors=64, method=Image.Quantize.MEDIANCUT))
+        else:
+            self.frames.append(image.quantize(palette=self.frames[0], dither=Image.Dither.NONE))
 
     def finish(self):
         self.frames[0].save(self.tmp, save_all=True, append_images=self.frames[1:], duration=self.duration_ms,
