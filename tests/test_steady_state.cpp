@@ -132,3 +132,25 @@ TEST(SteadyState, ShootingThatDoesNotConvergeSaysSo) {
   EXPECT_TRUE(warned);
   EXPECT_GE(r.summary.revolutions, 1);
 }
+
+TEST(SteadyState, AShootingWarmUpThatFailsKeepsItsRecord) {
+  // The warm-up of the shooting runs without recording. Where it fails, its record is what the
+  // summary describes: before, the history and events were empty beside a summary of 522 impacts.
+  // Now the warm-up is run again, recording: rows and the failure event are there, as with brute
+  // force, which fails the same way.
+  const std::vector<std::string> common = {"simulation.until_steady=true", "simulation.max_impacts=20"};
+  const PassResult shot =
+      run_case(build_case(load_config_string("", with(common, {"simulation.steady_method=\"shooting\""}))));
+  const PassResult brute =
+      run_case(build_case(load_config_string("", with(common, {"simulation.steady_method=\"brute_force\""}))));
+  ASSERT_TRUE(shot.failure);
+  ASSERT_TRUE(brute.failure);
+  EXPECT_EQ(shot.failure->kind, FailureKind::impacts);
+  EXPECT_DOUBLE_EQ(shot.failure->t, brute.failure->t);
+  EXPECT_EQ(shot.history.size(), brute.history.size());
+  ASSERT_FALSE(shot.events.empty());
+  EXPECT_EQ(shot.events.back().kind, brute.events.back().kind);
+  EXPECT_EQ(shot.summary.impacts, brute.summary.impacts);
+  EXPECT_FALSE(shot.summary.steady_state.reached);
+  EXPECT_NE(shot.summary.steady_state.note.find("the warm-up stopped in revolution 1"), std::string::npos);
+}

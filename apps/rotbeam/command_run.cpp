@@ -44,7 +44,7 @@ void print_summary(const Config& config, const PassResult& r, const std::string&
   std::cout << "  steps                 " << s.steps << " (" << s.rhs_evaluations << " RHS evaluations), "
             << fixed(s.wall_time_s, 3) << " s\n";
   if (config.simulation.revolutions > 0) {
-    if (s.steady_state.method == SteadyMethod::shooting)
+    if (s.steady_state.method == SteadyMethod::shooting && s.steady_state.map_evaluations > 0)
       std::cout << "  revolutions           " << s.revolutions
                 << " written: the orbit, run from the state the shooting converged to\n";
     else
@@ -56,7 +56,8 @@ void print_summary(const Config& config, const PassResult& r, const std::string&
   }
   for (const std::string& w : s.warnings) std::cout << "  warning: " << w << "\n";
   std::cout << "  wrote " << (std::filesystem::path(dir) / "history.csv").string() << ", events.csv, "
-            << (config.simulation.revolutions > 0 ? "revolutions.csv, " : "") << "summary.json\n";
+            << (std::filesystem::exists(std::filesystem::path(dir) / "revolutions.csv") ? "revolutions.csv, " : "")
+            << "summary.json\n";
 }
 
 int run_pass_command(const RunOptions& o) {

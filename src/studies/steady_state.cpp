@@ -249,14 +249,24 @@ PassResult shooting(const System& system, const InitialConditions& initial, cons
   PassResult w = run_pass(system, initial, warm, warm_control);
   const int warm_revolutions = w.summary.revolutions;
   if (w.failure || warm_revolutions == 0) {
-    // Nothing to shoot from: the warm-up's result (its failure, or a stop) is the answer.
+    // Nothing to shoot from: the warm-up's result (its failure, or a stop) is the answer. Its rows
+    // were not recorded: a failure is run again, recording into the caller's sink (the run is
+    // deterministic: it ends the same way), so that the record holds what the summary describes.
+    // A stop is not run again: the record then holds no rows, and the note says so.
+    const bool stopped = w.failure && w.failure->kind == FailureKind::interrupted;
+    if (!stopped) {
+      PassOptions again = warm;
+      again.output_interval_s = options.output_interval_s;
+      w = run_pass(system, initial, again, control);
+    }
     SteadyState& st = w.summary.steady_state;
     st.method = SteadyMethod::shooting;
     st.tolerance = options.steady_tolerance;
     st.reached = false;
     st.after_revolutions = 0;
     st.period_revolutions = 0;
-    st.note = "not reached: the warm-up stopped in revolution " + std::to_string(w.summary.revolutions + 1);
+    st.note = "not reached: the warm-up stopped in revolution " + std::to_string(w.summary.revolutions + 1) +
+              (stopped ? " (interrupted; the warm-up records no rows, so the history and events hold none)" : "");
     return w;
   }
   const Eigen::VectorXd z0 = section_state(system.beam, w.final_q, w.final_qd);
