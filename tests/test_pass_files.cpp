@@ -141,9 +141,16 @@ TEST(PassFiles, OneRunAtATimeInAFolderAndLeftoversOfAKilledRunAreRemoved) {
   const fs::path dir = fresh_dir("lock");
   fs::create_directories(dir);
   std::ofstream(dir / "history.csv.tmp.999999") << "partial\n";
+  std::ofstream(dir / "events.csv.tmp.999999.3") << "partial\n";
+  // A user's files that only look alike are not the writer's: kept.
+  const std::vector<std::string> users = {"history.csv.tmp.backup", "history.csv.tmp.", "events.csv.tmp.12.x",
+                                          "summary.json.tmp.1 2"};
+  for (const std::string& name : users) std::ofstream(dir / name) << "mine\n";
   {
     PassFiles first(dir, 5);
     EXPECT_FALSE(fs::exists(dir / "history.csv.tmp.999999"));
+    EXPECT_FALSE(fs::exists(dir / "events.csv.tmp.999999.3"));
+    for (const std::string& name : users) EXPECT_TRUE(fs::exists(dir / name)) << name;
     EXPECT_THROW(PassFiles(dir, 5), std::runtime_error);
   }
   PassFiles again(dir, 5);  // the lock went with the first writer

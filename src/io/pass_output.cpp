@@ -228,6 +228,18 @@ void prepare_output_folder(const std::filesystem::path& dir) {
   std::filesystem::remove(probe, ec);
 }
 
+namespace {
+// The suffixes this writer gives its temporaries after ".tmp.": "<pid>" or "<pid>.<piece>". Only
+// those are a killed run's leftovers; a user's "history.csv.tmp.backup" is not touched.
+bool is_temporary_suffix(const std::string& rest) {
+  const std::size_t dot = rest.find('.');
+  const auto digits = [](const std::string& s) {
+    return !s.empty() && s.find_first_not_of("0123456789") == std::string::npos;
+  };
+  return dot == std::string::npos ? digits(rest) : digits(rest.substr(0, dot)) && digits(rest.substr(dot + 1));
+}
+}  // namespace
+
 PassFiles::PassFiles(const std::filesystem::path& dir, int n, int history_revolutions)
     : dir_(dir), n_(n), history_revolutions_(history_revolutions) {
   namespace fs = std::filesystem;
@@ -243,8 +255,8 @@ PassFiles::PassFiles(const std::filesystem::path& dir, int n, int history_revolu
     // With the lock held no live run writes here: temporaries are a killed run's leftovers.
     for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
       const std::string name = e.path().filename().string();
-      for (const char* stem : {"history.csv.tmp.", "events.csv.tmp.", "revolutions.csv.tmp.", "summary.json.tmp."})
-        if (name.rfind(stem, 0) == 0) fs::remove(e.path(), ec);
+      for (const std::string stem : {"history.csv.tmp.", "events.csv.tmp.", "revolutions.csv.tmp.", "summary.json.tmp."})
+        if (name.rfind(stem, 0) == 0 && is_temporary_suffix(name.substr(stem.size()))) fs::remove(e.path(), ec);
     }
     fs::remove(dir / "summary.json", ec);  // the folder is not complete until commit()
     if (!ec) fs::remove(dir / "revolutions.csv", ec);  // an older run's, which this run may not write
