@@ -93,6 +93,15 @@ TEST(Sweep, RunsResumesAndIsolatesFailures) {
   EXPECT_EQ(second.resumed, 4);
   EXPECT_EQ(second.ran, 0);
   EXPECT_EQ(second.results[2].summary["impacts"], first.results[2].summary["impacts"]);
+  // Resuming does not hide a failure: the failed cases stay `failed`, counted, with their message.
+  EXPECT_EQ(second.failed, 2);
+  EXPECT_EQ(second.results[0].status, SweepStatus::failed);
+  EXPECT_TRUE(second.results[0].resumed);
+  EXPECT_NE(second.results[0].message.find("impacts: "), std::string::npos) << second.results[0].message;
+  EXPECT_NE(second.results[0].message.find("(computed by an earlier run)"), std::string::npos);
+  EXPECT_EQ(second.results[2].status, SweepStatus::resumed);
+  const std::string again = slurp(fs::path(dir) / "sweep.csv");
+  EXPECT_NE(again.find(",550,0.1,failed,"), std::string::npos) << again;
 
   // A changed base configuration invalidates the finished cases. While the new sweep runs the
   // folder has no index: the older sweep.csv, which describes other results, is gone at once.

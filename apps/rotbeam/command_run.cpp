@@ -64,14 +64,8 @@ int run_pass_command(const RunOptions& o) {
   const Config config = o.case_options.load();
   if (o.output_dir.empty()) throw ConfigError("-o DIR: an output folder is required");
   const Case c = build_case(config);  // before the folder is touched: bad input leaves nothing behind
-  // history.csv must fit on the disk it goes to (the folder, or the nearest folder above it that exists).
-  std::filesystem::path existing = std::filesystem::absolute(o.output_dir);
-  while (!std::filesystem::exists(existing) && existing.has_parent_path() && existing != existing.parent_path())
-    existing = existing.parent_path();
-  std::error_code space_error;
-  const std::filesystem::space_info space = std::filesystem::space(existing, space_error);
-  const HistoryEstimate estimate =
-      check_history_fits(c, space_error ? 0.0 : static_cast<double>(space.available), false);
+  // history.csv must fit on the disk it goes to.
+  const HistoryEstimate estimate = check_history_fits(c, available_disk_bytes(o.output_dir), false);
   if (estimate.known && estimate.csv_bytes > 1e9 && !o.quiet)
     std::cerr << "rotbeam: note: history.csv will take " << (estimate.upper_bound ? "up to " : "about ")
               << size_text(estimate.csv_bytes) << " (output.interval_s sets its sampling)" << std::endl;

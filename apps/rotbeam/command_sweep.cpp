@@ -59,8 +59,8 @@ int run_sweep_command(const SweepCommandOptions& o) {
   options.stop = &interrupt_token();
   const SweepReport r = run_sweep(axes, options);
   if (terminal) std::fprintf(stderr, "\n");
-  std::cout << r.cases.size() << " cases: " << r.ran << " run (" << r.failed << " stopped on a diagnosed failure), "
-            << r.resumed << " already done, " << r.errors << " errors, " << r.interrupted << " interrupted\n";
+  std::cout << r.cases.size() << " cases: " << r.ran << " run, " << r.resumed << " already done; " << r.failed
+            << " stopped on a diagnosed failure, " << r.errors << " errors, " << r.interrupted << " interrupted\n";
   for (std::size_t i = 0; i < r.cases.size(); ++i)
     if (r.results[i].status == SweepStatus::failed || r.results[i].status == SweepStatus::error)
       std::cout << "  " << r.cases[i].folder << " " << sweep_status_name(r.results[i].status) << ": "

@@ -38,11 +38,14 @@ struct HistoryEstimate {
   bool known = false;
   bool upper_bound = false;  // the run may end earlier
   double rows = 0, csv_bytes = 0, memory_bytes = 0;
+  // At least this many: a row is taken at the first step an interval after the last, and no step
+  // is longer than the scheme's largest, so rows ≥ span / (interval + largest step).
+  double min_rows = 0, min_csv_bytes = 0, min_memory_bytes = 0;
 };
 HistoryEstimate estimate_history(const Case& c);
 
-/// Throws ConfigError naming output.interval_s when the history a run of c certainly records would
-/// not fit in `available_bytes` (of disk for history.csv when `in_memory` is false, of memory
+/// Throws ConfigError naming output.interval_s when the history a run of c certainly records (its
+/// min_rows) would not fit in `available_bytes` (of disk for history.csv when `in_memory` is false, of memory
 /// otherwise); 0 available means unknown (no check). Returns the estimate.
 HistoryEstimate check_history_fits(const Case& c, double available_bytes, bool in_memory);
 

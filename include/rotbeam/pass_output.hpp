@@ -48,6 +48,10 @@ void prepare_output_folder(const std::filesystem::path& dir);
 /// ends): a second run into the same folder stops at once instead of mixing its files with the first's. At construction
 /// an older summary.json and temporaries left by a killed run are removed; a writer destroyed
 /// without commit removes its own. Throws std::runtime_error naming the path on I/O errors.
+/// Bytes free for writing where `dir` is or would be made (the nearest folder above it that
+/// exists); 0 when unknown.
+double available_disk_bytes(const std::filesystem::path& dir);
+
 class PassFiles final : public PassSink {
 public:
   /// `history_revolutions` (output.history_revolutions): over many revolutions, history.csv and

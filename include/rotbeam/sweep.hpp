@@ -44,6 +44,7 @@ struct SweepCaseResult {
   SweepStatus status = SweepStatus::error;
   nlohmann::json summary;  // summary.json of the case (null for `error`)
   std::string message;     // failure or error message
+  bool resumed = false;    // computed by an earlier run of the sweep (status done → `resumed`; a failed case stays `failed`)
 };
 
 struct SweepProgress {

@@ -184,7 +184,9 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
          p.damping_node = &n;
        }},
       {"hub.radius_m", [](Parsed& p, auto& k, auto& n) { p.config.beam.hub_radius_m = number_in(k, n, 0.0, 100.0, false, false); }},
-      {"hub.speed_rpm", [](Parsed& p, auto& k, auto& n) { p.config.beam.speed_rpm = number_in(k, n, 0.0, 1e6, true, false); }},
+      // Below 1e-3 rpm (a turn in 17 hours) a pass lasts days of simulated time: the steps and
+      // times leave the ranges the integration is built for (1e-9 rpm ended in step underflow).
+      {"hub.speed_rpm", [](Parsed& p, auto& k, auto& n) { p.config.beam.speed_rpm = number_in(k, n, 1e-3, 1e6, false, false); }},
       {"surface.depth_fraction",
        [](Parsed& p, auto& k, auto& n) {
          p.config.surface.depth_fraction = number_in(k, n, 0.0, 1.0, true, true);

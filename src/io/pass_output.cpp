@@ -217,6 +217,16 @@ nlohmann::json summary_json(const PassResult& result, const Config& config, cons
   return j;
 }
 
+double available_disk_bytes(const std::filesystem::path& dir) {
+  std::error_code ec;
+  std::filesystem::path existing = std::filesystem::absolute(dir, ec);
+  if (ec) return 0.0;
+  while (!std::filesystem::exists(existing, ec) && existing.has_parent_path() && existing != existing.parent_path())
+    existing = existing.parent_path();
+  const std::filesystem::space_info space = std::filesystem::space(existing, ec);
+  return ec ? 0.0 : static_cast<double>(space.available);
+}
+
 void prepare_output_folder(const std::filesystem::path& dir) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);

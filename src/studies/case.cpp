@@ -64,6 +64,11 @@ HistoryEstimate estimate_history(const Case& c) {
   e.csv_bytes = e.rows * 18.1 * (13.0 + 2.0 * n);
   // A HistoryRow with its two vectors' heap blocks, and the arrays handed to Python.
   e.memory_bytes = e.rows * (sizeof(HistoryRow) + 2.0 * (8.0 * n + 32.0) + 8.0 * (13.0 + 2.0 * n));
+  const double longest_step =
+      o.scheme == Scheme::thesis ? std::max(o.free_step_s, o.contact_step_s) : o.max_step_s;
+  e.min_rows = span_s / (o.output_interval_s + longest_step);
+  e.min_csv_bytes = e.csv_bytes * e.min_rows / e.rows;
+  e.min_memory_bytes = e.memory_bytes * e.min_rows / e.rows;
   return e;
 }
 
@@ -81,16 +86,16 @@ std::string size_text(double bytes) {
 
 HistoryEstimate check_history_fits(const Case& c, double available_bytes, bool in_memory) {
   const HistoryEstimate e = estimate_history(c);
-  const double need = in_memory ? e.memory_bytes : e.csv_bytes;
+  const double need = in_memory ? e.min_memory_bytes : e.min_csv_bytes;
   if (e.known && !e.upper_bound && available_bytes > 0 && need > available_bytes) {
     char rows[32];
-    std::snprintf(rows, sizeof rows, "%.3g", e.rows);
+    std::snprintf(rows, sizeof rows, "%.3g", e.min_rows);
     char interval[32];
     std::snprintf(interval, sizeof interval, "%g", c.options.output_interval_s);
-    throw ConfigError(std::string("output.interval_s = ") + interval + ": the history would hold " + rows + " rows, " +
-                      (in_memory ? "about " + size_text(need) + " of memory, more than the " + size_text(available_bytes) +
+    throw ConfigError(std::string("output.interval_s = ") + interval + ": the history would hold at least " + rows + " rows, " +
+                      (in_memory ? "at least " + size_text(need) + " of memory, more than the " + size_text(available_bytes) +
                                        " available (run it with `rotbeam run -o DIR`, which streams to disk, or sample less often)"
-                                 : "about " + size_text(need) + " in history.csv, more than the " +
+                                 : "at least " + size_text(need) + " in history.csv, more than the " +
                                        size_text(available_bytes) + " free there (sample less often)"));
   }
   return e;

@@ -151,6 +151,20 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
       }() + "): " + e.what());
     }
   }
+  // The cases' histories must fit on the disk, as for one run (check_history_fits): checked before
+  // the folder is made (cases an earlier run finished are counted too: a bound).
+  {
+    double need = 0.0;
+    for (const Config& config : configs) {
+      const HistoryEstimate e = estimate_history(build_case(config));
+      if (e.known && !e.upper_bound) need += e.min_csv_bytes;
+    }
+    const double available = available_disk_bytes(options.dir);
+    if (available > 0 && need > available)
+      throw ConfigError("output.interval_s: the histories of the " + std::to_string(configs.size()) +
+                        " cases would take at least " + size_text(need) + ", more than the " + size_text(available) +
+                        " free where " + options.dir.string() + " goes (sample less often)");
+  }
   std::optional<FolderLock> lock;  // one sweep at a time in a folder (each case folder has its own)
   try {
     prepare_output_folder(options.dir);
@@ -169,8 +183,15 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
       const bool interrupted = j["failure"].is_object() && j["failure"]["kind"] == "interrupted";
       if (!interrupted && j["config"] == configs[i].to_json()) {
         report.results[i].summary = j;
-        report.results[i].status = SweepStatus::resumed;
-        if (j["failure"].is_object()) report.results[i].message = j["failure"]["message"].get<std::string>();
+        report.results[i].resumed = true;
+        // A case that stopped on a diagnosed failure stays `failed`: resuming does not hide it.
+        if (j["failure"].is_object()) {
+          report.results[i].status = SweepStatus::failed;
+          report.results[i].message = j["failure"]["kind"].get<std::string>() + ": " +
+                                      j["failure"]["message"].get<std::string>() + " (computed by an earlier run)";
+        } else {
+          report.results[i].status = SweepStatus::resumed;
+        }
         finished = true;
       }
     }
@@ -195,6 +216,7 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
   progress.total = static_cast<int>(report.cases.size());
   progress.resumed = report.resumed;
   progress.finished = report.resumed;
+  for (const SweepCaseResult& r : report.results) progress.failed += r.resumed && r.status == SweepStatus::failed;
   JobRunnerOptions runner;
   runner.threads = options.jobs;
   runner.stop = options.stop;
@@ -246,7 +268,7 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
   for (const SweepCaseResult& r : report.results) {
     switch (r.status) {
       case SweepStatus::done: ++report.ran; break;
-      case SweepStatus::failed: ++report.ran, ++report.failed; break;
+      case SweepStatus::failed: report.ran += r.resumed ? 0 : 1, ++report.failed; break;
       case SweepStatus::error: ++report.errors; break;
       case SweepStatus::interrupted: ++report.interrupted; break;
       case SweepStatus::resumed: break;
