@@ -143,14 +143,13 @@ py::tuple modes(const std::optional<std::string>& path, const Values& overrides,
   const Config config = load(path, overrides);
   if (requested && requested->empty()) throw ConfigError("speeds_rpm: empty (give speeds, or None for the defaults)");
   const std::vector<double> speeds_rpm = requested ? *requested : default_mode_speeds_rpm(config.beam.speed_rpm);
+  if (speeds_rpm.size() > 100000)  // as `rotbeam modes --speeds-rpm A:B:N`
+    throw ConfigError("speeds_rpm: " + std::to_string(speeds_rpm.size()) + " speeds, more than 100000");
   for (double s : speeds_rpm)
     if (!(s >= 0.0 && s <= 1e6))
       throw ConfigError("speeds_rpm: " + std::to_string(s) + " must be in [0, 1000000] rpm");
-  Eigen::MatrixXd f;
-  {
-    py::gil_scoped_release release;
-    f = frequencies_versus_speed(config.beam, speeds_rpm);
-  }
+  const Eigen::MatrixXd f = interruptible(
+      [&](const StopToken& stop) { return frequencies_versus_speed(config.beam, speeds_rpm, &stop); });
   py::array_t<double> freq({static_cast<py::ssize_t>(f.rows()), static_cast<py::ssize_t>(f.cols())});
   auto m = freq.mutable_unchecked<2>();
   for (Eigen::Index i = 0; i < f.rows(); ++i)

@@ -4,6 +4,8 @@
 // eigenvectors in modal coordinates (normalised to unit length), w_k(ξ) = S(ξ)ᵀ φ_k.
 #pragma once
 
+#include "rotbeam/stop_token.hpp"
+
 #include "rotbeam/foreshortening_beam.hpp"
 
 #include <Eigen/Core>
@@ -22,7 +24,9 @@ ModalAnalysis modal_analysis(const ForeshorteningBeam& model);
 /// The default speeds of `rotbeam modes` [rpm]: 0, the Table 5-2 speeds and the case's own, ascending.
 std::vector<double> default_mode_speeds_rpm(double case_speed_rpm);
 
-/// Modes at each speed [rpm] for the beam of `base` (rows: speeds, columns: modes) [Hz].
-Eigen::MatrixXd frequencies_versus_speed(const BeamParameters& base, const std::vector<double>& speeds_rpm);
+/// Modes at each speed [rpm] for the beam of `base` (rows: speeds, columns: modes) [Hz]. A stop
+/// requested on `stop` (checked at every speed) ends it early: the rows not reached are NaN.
+Eigen::MatrixXd frequencies_versus_speed(const BeamParameters& base, const std::vector<double>& speeds_rpm,
+                                         const StopToken* stop = nullptr);
 
 }  // namespace rotbeam

@@ -29,10 +29,12 @@ std::vector<double> default_mode_speeds_rpm(double case_speed_rpm) {
   return speeds;
 }
 
-Eigen::MatrixXd frequencies_versus_speed(const BeamParameters& base, const std::vector<double>& speeds_rpm) {
-  Eigen::MatrixXd f(static_cast<Eigen::Index>(speeds_rpm.size()), base.modes);
+Eigen::MatrixXd frequencies_versus_speed(const BeamParameters& base, const std::vector<double>& speeds_rpm,
+                                         const StopToken* stop) {
+  Eigen::MatrixXd f = Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(speeds_rpm.size()), base.modes, NAN);
   BeamParameters p = base;
   for (std::size_t s = 0; s < speeds_rpm.size(); ++s) {
+    if (stop && stop->stop_requested()) break;
     p.speed_rpm = speeds_rpm[s];
     f.row(static_cast<Eigen::Index>(s)) = modal_analysis(make_beam(p)).frequencies_hz.transpose();
   }

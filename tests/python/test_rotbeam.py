@@ -205,6 +205,23 @@ def test_ctrl_c_stops_the_search_for_the_first_impact():
     assert time.time() - t0 < 3.0
 
 
+def test_ctrl_c_stops_a_long_modal_analysis():
+    # 40 modes at 20 000 speeds take about half a minute; SIGINT must end it at once. More speeds
+    # than the command line allows (100 000) are refused.
+    import signal
+    import threading
+    import time
+
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    t0 = time.time()
+    with pytest.raises(KeyboardInterrupt):
+        rotbeam.modes(overrides={"beam.modes": 40}, speeds_rpm=np.linspace(0, 5000, 20000))
+    assert time.time() - t0 < 3.0
+    with pytest.raises(rotbeam.ConfigError, match="100001 speeds, more than 100000"):
+        rotbeam.modes(speeds_rpm=np.zeros(100001))
+
+
 def test_plot_names_a_damaged_file_in_one_line(tmp_path):
     out = tmp_path / "run"
     code, _, err = cli("run", "-o", str(out))
