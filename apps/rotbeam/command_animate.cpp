@@ -40,6 +40,7 @@ Command add_animate_command(CLI::App& app) {
     namespace fs = std::filesystem;
     if (!fs::exists(fs::path(opts->folder) / "summary.json"))
       throw ConfigError(opts->folder + ": not a run folder (no summary.json)");
+    if (!opts->output.empty()) check_output_file("-o", opts->output, {".gif", ".mp4"});
     std::vector<std::string> args = {opts->folder};
     if (!opts->output.empty()) args.insert(args.end(), {"-o", opts->output});
     if (opts->frames) args.insert(args.end(), {"--frames", std::to_string(*opts->frames)});

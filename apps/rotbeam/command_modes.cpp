@@ -58,6 +58,8 @@ std::vector<double> parse_speeds(const std::string& text) {
 
 int run_modes(const ModesOptions& o) {
   const Config config = o.case_options.load();
+  if (!o.plot_path.empty()) check_output_file("--plot", o.plot_path, {".png", ".pdf", ".svg"});
+  if (!o.csv_path.empty()) check_output_file("--csv", o.csv_path, {});
   std::vector<double> speeds;
   if (!o.speeds.empty()) {
     speeds = parse_speeds(o.speeds);

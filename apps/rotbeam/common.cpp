@@ -1,6 +1,7 @@
 #include "common.hpp"
 
 #include <atomic>
+#include <cctype>
 #include <cmath>
 #include <csignal>
 #include <ctime>
@@ -121,6 +122,24 @@ std::string number_text(double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%g", v);
   return buf;
+}
+
+void check_output_file(const std::string& option, const std::string& path, const std::vector<std::string>& suffixes) {
+  namespace fs = std::filesystem;
+  const fs::path p(path);
+  if (path.empty()) throw ConfigError(option + " \"\": an empty file name");
+  if (fs::is_directory(p)) throw ConfigError(option + " " + path + ": is a folder; give a file name");
+  const fs::path parent = p.has_parent_path() ? p.parent_path() : fs::path(".");
+  if (!fs::is_directory(parent)) throw ConfigError(option + " " + path + ": the folder " + parent.string() + " does not exist");
+  if (suffixes.empty()) return;
+  std::string suffix = p.extension().string();
+  for (char& c : suffix) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  std::string list;
+  for (const std::string& s : suffixes) {
+    if (suffix == s) return;
+    list += (list.empty() ? "" : ", ") + s;
+  }
+  throw ConfigError(option + " " + path + ": must end in " + list);
 }
 
 }  // namespace rotbeam::cli

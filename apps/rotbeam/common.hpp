@@ -78,4 +78,9 @@ std::string fixed(double v, int decimals);
 /// A number with 6 significant digits (%g), for messages.
 std::string number_text(double v);
 
+/// Checks, before any work, a file the user named for an option: not a folder, in a folder that
+/// exists, and (when `suffixes` is not empty) ending in one of them. Throws ConfigError naming the
+/// option and the path.
+void check_output_file(const std::string& option, const std::string& path, const std::vector<std::string>& suffixes);
+
 }  // namespace rotbeam::cli

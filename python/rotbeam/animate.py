@@ -460,4 +460,6 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    from rotbeam.plots import run_main
+
+    run_main(main)

@@ -44,10 +44,14 @@ def save_figure(fig, path, dpi=120):
     or failed save leaves no partial picture under the user's name)."""
     path = Path(path)
     fmt = path.suffix.lstrip(".").lower() or "png"
+    if fmt not in fig.canvas.get_supported_filetypes():
+        raise ValueError(f"{path}: cannot write a picture as '.{fmt}' (use .png, .pdf or .svg)")
     tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
     try:
         fig.savefig(tmp, dpi=dpi, format=fmt)
         os.replace(tmp, path)
+    except OSError as e:  # the temporary's name means nothing to the user: theirs, and why
+        raise OSError(e.errno, e.strerror, str(path)) from None
     finally:
         if tmp.exists():
             tmp.unlink()
@@ -90,11 +94,15 @@ def check_run_files(folder):
         summary = json.loads((folder / "summary.json").read_text())
     except ValueError as e:
         raise DamagedFolder(f"{folder / 'summary.json'}: not valid JSON ({e})") from None
+    files = summary.get("files") if isinstance(summary, dict) else None
+    if not isinstance(summary, dict) or not isinstance(summary.get("config"), dict) or \
+            not isinstance(files, dict) or not all(isinstance(v, dict) for v in files.values()):
+        raise DamagedFolder(f"{folder / 'summary.json'}: not a rotbeam run summary (its config or files are missing)")
     for name in ("history.csv", "events.csv"):
         path = folder / name
         if not path.exists():
             raise DamagedFolder(f"{path}: missing")
-        recorded = summary.get("files", {}).get(name, {}).get("bytes")
+        recorded = files.get(name, {}).get("bytes")
         if recorded is not None and path.stat().st_size != recorded:
             raise DamagedFolder(f"{path}: {path.stat().st_size} bytes where summary.json records {recorded}: "
                                 "truncated or replaced")
@@ -287,6 +295,11 @@ def plot_sweep(folder, out, cases=False):
     keys = [k for k in table if k not in ("case", "folder", "status", "message") and k not in METRICS]
     written = []
     ok = np.isin(table["status"], ["done", "resumed", "failed"])
+    for f, good in zip(table["folder"], ok):
+        if good:  # a case with results must have its files: a missing or damaged one is named
+            if not (folder / f / "summary.json").exists():
+                raise DamagedFolder(f"{folder / f / 'summary.json'}: missing (sweep.csv lists results for {f})")
+            check_run_files(folder / f)
     first = keys[0]
     second = keys[1] if len(keys) > 1 else None
     x = table[first]
@@ -382,6 +395,12 @@ def main(argv=None):
     if args.output and out.exists() and not out.is_dir():
         print(f"rotbeam: error: -o {out}: exists and is not a folder", file=sys.stderr)
         return 2
+    if args.output and not args.campbell:
+        try:
+            out.mkdir(parents=True, exist_ok=True)
+        except OSError as e:
+            print(f"rotbeam: error: -o {out}: cannot create the output folder ({e.strerror or e})", file=sys.stderr)
+            return 2
     try:
         if args.reproduce:
             from .reproduce import write_report
@@ -404,8 +423,14 @@ def main(argv=None):
         where = f"{e.filename}: " if e.filename else ""
         print(f"rotbeam: error: {where}{e.strerror or e}", file=sys.stderr)
         return 1
-    except (ValueError, KeyError, IndexError, TypeError) as e:  # json.JSONDecodeError is a ValueError
-        print(f"rotbeam: error: {folder}: damaged or incomplete run files ({type(e).__name__}: {e})"[:400],
+    except ValueError as e:
+        if str(e).startswith(str(args.campbell or "\0")) or "cannot write a picture" in str(e):
+            print(f"rotbeam: error: {e}", file=sys.stderr)
+        else:  # json.JSONDecodeError is a ValueError
+            print(f"rotbeam: error: {folder}: damaged or incomplete run files ({e})"[:400], file=sys.stderr)
+        return 2
+    except (KeyError, IndexError, TypeError, AttributeError) as e:
+        print(f"rotbeam: error: {folder}: damaged or incomplete run files (missing or odd entry {e})"[:400],
               file=sys.stderr)
         return 2
     for w in written:
@@ -413,5 +438,20 @@ def main(argv=None):
     return 0
 
 
+def run_main(main_function):
+    """sys.exit(main_function()), with standard output that cannot be written (a full disk, a
+    closed pipe) reported in one line, exit 1, as by `rotbeam` itself."""
+    try:
+        code = main_function()
+        sys.stdout.flush()
+    except OSError as e:
+        if e.errno is None:
+            raise
+        print(f"rotbeam: error: standard output: the results could not be written ({e.strerror})", file=sys.stderr)
+        code = 1
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # nothing left to flush at exit
+    sys.exit(code)
+
+
 if __name__ == "__main__":
-    sys.exit(main())
+    run_main(main)

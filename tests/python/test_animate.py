@@ -142,7 +142,7 @@ def test_mp4_has_every_frame(runs, tmp_path):
 @pytest.mark.parametrize("args, message", [
     (["--window", "5:1"], "window 5:1: the end angle must exceed the start"),
     (["--window", "100:120"], "no history rows between 100° and 120°"),
-    (["-o", "x.png"], "the animation is written as .gif or .mp4"),
+    (["-o", "x.png"], "x.png: must end in .gif, .mp4"),
     (["--magnify", "0"], "--magnify"),
     (["--frames", "3", "--frames-per-degree", "2"], "excludes"),
 ])

@@ -125,3 +125,46 @@ def test_one_sweep_at_a_time_in_a_folder(tmp_path):
     assert first.returncode == 0, err
     assert not (out / ".rotbeam.lock").exists()
     assert len(read_rows(out / "sweep.csv")) == 2
+
+
+@pytest.mark.parametrize("summary", ["[]", "null", '{"files": "x"}', '{"config": {}, "files": {"history.csv": 5}}'])
+def test_plot_of_an_odd_summary_is_one_line(tmp_path, summary):
+    # A summary.json that parses but is not a run's: one line naming it, exit 2 (it was a traceback).
+    assert run("run", "--set", "output.interval_s=1e-4", "-o", str(tmp_path / "r")).returncode == 0
+    (tmp_path / "r" / "summary.json").write_text(summary)
+    done = run("plot", str(tmp_path / "r"))
+    assert done.returncode == 2, done.stderr
+    assert done.stderr.count("\n") == 1 and "summary.json: not a rotbeam run summary" in done.stderr, done.stderr
+
+
+def test_plot_says_what_it_cannot_write(tmp_path):
+    assert run("run", "--set", "output.interval_s=1e-4", "-o", str(tmp_path / "r")).returncode == 0
+    # An output folder that cannot be made: exit 2, as for `run -o`.
+    done = run("plot", str(tmp_path / "r"), "-o", "/proc/rotbeam-cannot-be-here")
+    assert done.returncode == 2 and "cannot create the output folder" in done.stderr, done.stderr
+    # A picture whose name is a folder: the user's name in the message, not a temporary's.
+    (tmp_path / "p").mkdir()
+    (tmp_path / "p" / "tip_path.png").mkdir()
+    done = run("plot", str(tmp_path / "r"), "-o", str(tmp_path / "p"))
+    assert done.returncode == 1 and done.stderr.count("\n") == 1, done.stderr
+    assert f"{tmp_path / 'p' / 'tip_path.png'}: Is a directory" in done.stderr, done.stderr
+    assert not [p for p in (tmp_path / "p").iterdir() if ".tmp" in p.name]
+    # Standard output that cannot be written: one line, exit 1.
+    with open("/dev/full", "w") as full:
+        done = subprocess.run([CLI, "plot", str(tmp_path / "r"), "-o", str(tmp_path / "q")], stdout=full,
+                              stderr=subprocess.PIPE, text=True)
+    assert done.returncode == 1 and done.stderr.count("\n") == 1, done.stderr
+    assert "standard output: the results could not be written" in done.stderr
+
+
+def test_plot_of_a_sweep_names_a_missing_case(tmp_path):
+    out = tmp_path / "s"
+    assert run("sweep", "--vary", "hub.speed_rpm=550,3000", "--set", "output.interval_s=1e-3", "-o", str(out)).returncode == 0
+    rows = read_rows(out / "sweep.csv")
+    missing = out / rows[1]["folder"]
+    for p in missing.iterdir():
+        p.unlink()
+    missing.rmdir()
+    done = run("plot", str(out), "--cases")
+    assert done.returncode == 2, done.stderr
+    assert f"{missing / 'summary.json'}: missing" in done.stderr, done.stderr
