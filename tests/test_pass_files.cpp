@@ -146,11 +146,18 @@ TEST(PassFiles, OneRunAtATimeInAFolderAndLeftoversOfAKilledRunAreRemoved) {
   const std::vector<std::string> users = {"history.csv.tmp.backup", "history.csv.tmp.", "events.csv.tmp.12.x",
                                           "summary.json.tmp.1 2"};
   for (const std::string& name : users) std::ofstream(dir / name) << "mine\n";
+  // The pictures an older run's `plot` and `animate` drew here describe that run: removed. Other
+  // pictures (a Campbell diagram, a user's) stay.
+  const std::vector<std::string> drawn = {"tip_path.png", "energy.png", "animation.gif", "animation.mp4"};
+  for (const std::string& name : drawn) std::ofstream(dir / name) << "old run\n";
+  std::ofstream(dir / "campbell.png") << "mine\n";
   {
     PassFiles first(dir, 5);
     EXPECT_FALSE(fs::exists(dir / "history.csv.tmp.999999"));
     EXPECT_FALSE(fs::exists(dir / "events.csv.tmp.999999.3"));
     for (const std::string& name : users) EXPECT_TRUE(fs::exists(dir / name)) << name;
+    for (const std::string& name : drawn) EXPECT_FALSE(fs::exists(dir / name)) << name;
+    EXPECT_TRUE(fs::exists(dir / "campbell.png"));
     EXPECT_THROW(PassFiles(dir, 5), std::runtime_error);
   }
   PassFiles again(dir, 5);  // the lock went with the first writer

@@ -25,8 +25,8 @@ import subprocess  # noqa: E402
 import sys  # noqa: E402
 from pathlib import Path  # noqa: E402
 
-from .plots import (DamagedFolder, case_title, check_run_files, read_csv, surface_of,  # noqa: E402
-                    surface_x)
+from .plots import (DamagedFolder, case_title, check_run_files, read_csv, remove_stale_temporaries,  # noqa: E402
+                    surface_of, surface_x)
 
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
@@ -353,6 +353,7 @@ class _GifSink:
 
     def __init__(self, target, fps):
         self.target = Path(target)
+        remove_stale_temporaries(self.target)
         self.tmp = self.target.with_name(f".{self.target.stem}.{os.getpid()}.tmp.gif")
         self.duration_ms = 1000.0 / fps
         self.frames = []
@@ -382,6 +383,7 @@ class _Mp4Sink:
 
     def __init__(self, target, fps, width, height):
         self.target = Path(target)
+        remove_stale_temporaries(self.target)
         self.tmp = self.target.with_name(f".{self.target.stem}.{os.getpid()}.tmp.mp4")
         self.proc = subprocess.Popen(
             ["ffmpeg", "-loglevel", "error", "-y", "-f", "rawvideo", "-pix_fmt", "rgba", "-s", f"{width}x{height}",

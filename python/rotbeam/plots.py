@@ -39,6 +39,33 @@ except ImportError as missing:
 DEG = "°"
 
 
+def remove_stale_temporaries(path):
+    """Removes the temporaries `.NAME.PID.tmp[.EXT]` that a killed writer of `path` left beside it
+    (its process is gone); those of a live writer, and every other file, are left alone."""
+    path = Path(path)
+    prefix = f".{path.stem if path.suffix in ('.gif', '.mp4') else path.name}."
+    try:
+        entries = list(path.parent.iterdir())
+    except OSError:
+        return
+    for entry in entries:
+        name = entry.name
+        if not name.startswith(prefix):
+            continue
+        rest = name[len(prefix):].split(".")
+        if len(rest) < 2 or not rest[0].isdigit() or rest[1] != "tmp" or len(rest) > 3:
+            continue
+        try:
+            os.kill(int(rest[0]), 0)
+        except ProcessLookupError:
+            try:
+                entry.unlink()
+            except OSError:
+                pass
+        except OSError:
+            pass
+
+
 def save_figure(fig, path, dpi=120):
     """Writes fig to path whole: into a temporary file beside it, renamed into place (an interrupted
     or failed save leaves no partial picture under the user's name)."""
@@ -46,6 +73,7 @@ def save_figure(fig, path, dpi=120):
     fmt = path.suffix.lstrip(".").lower() or "png"
     if fmt not in fig.canvas.get_supported_filetypes():
         raise ValueError(f"{path}: cannot write a picture as '.{fmt}' (use .png, .pdf or .svg)")
+    remove_stale_temporaries(path)
     tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
     try:
         fig.savefig(tmp, dpi=dpi, format=fmt)

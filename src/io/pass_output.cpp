@@ -268,6 +268,12 @@ PassFiles::PassFiles(const std::filesystem::path& dir, int n, int history_revolu
       for (const std::string stem : {"history.csv.tmp.", "events.csv.tmp.", "revolutions.csv.tmp.", "summary.json.tmp."})
         if (name.rfind(stem, 0) == 0 && is_temporary_suffix(name.substr(stem.size()))) fs::remove(e.path(), ec);
     }
+    // The pictures and animation that `rotbeam plot` and `rotbeam animate` drew of an older run in
+    // this folder describe that run: removed with it, so that no picture sits beside other data.
+    for (const char* drawn : {"normal_force_vs_y.png", "tip_path.png", "modal_coordinates.png", "energy.png",
+                              "impacts.png", "animation.gif", "animation.mp4"})
+      if (fs::is_regular_file(fs::symlink_status(dir / drawn, ec))) fs::remove(dir / drawn, ec);
+    ec.clear();
     fs::remove(dir / "summary.json", ec);  // the folder is not complete until commit()
     if (!ec) fs::remove(dir / "revolutions.csv", ec);  // an older run's, which this run may not write
     if (ec)

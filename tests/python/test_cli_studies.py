@@ -168,3 +168,18 @@ def test_plot_of_a_sweep_names_a_missing_case(tmp_path):
     done = run("plot", str(out), "--cases")
     assert done.returncode == 2, done.stderr
     assert f"{missing / 'summary.json'}: missing" in done.stderr, done.stderr
+
+
+def test_a_killed_writers_temporaries_are_removed_by_the_next(tmp_path):
+    # `plot` killed with SIGKILL leaves `.tip_path.png.PID.tmp`; the next plot into the folder
+    # removes those of dead processes, and nothing else.
+    assert run("run", "--set", "output.interval_s=1e-4", "-o", str(tmp_path / "r")).returncode == 0
+    dead = subprocess.Popen(["true"])
+    dead.wait()
+    stale = tmp_path / "r" / f".tip_path.png.{dead.pid}.tmp"
+    alive = tmp_path / "r" / f".tip_path.png.{os.getpid()}.tmp"
+    mine = tmp_path / "r" / ".tip_path.png.notes.tmp"
+    for p in (stale, alive, mine):
+        p.write_text("x")
+    assert run("plot", str(tmp_path / "r")).returncode == 0
+    assert not stale.exists() and alive.exists() and mine.exists()
