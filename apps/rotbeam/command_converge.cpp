@@ -72,13 +72,20 @@ int run_converge(const ConvergeOptions& o) {
   }
   if (o.jobs < 0) throw ConfigError("--jobs " + std::to_string(o.jobs) + ": must be >= 0");
   install_interrupt_handlers();
-  const bool show = !o.quiet && isatty(STDERR_FILENO);
-  const ConvergenceStudy study = run_convergence(config, ladder, o.jobs, &interrupt_token(), [show](const JobProgress& p) {
-    if (!show) return;
-    std::fprintf(stderr, "\r  %zu/%zu runs, %.1f s elapsed, ETA %.0f s   ", p.finished, p.total, p.elapsed_s, p.eta_s);
-    if (p.finished == p.total) std::fprintf(stderr, "\r%60s\r", "");
-    std::fflush(stderr);
-  });
+  ConvergenceStudy study;
+  {
+    LiveLine line(!o.quiet && isatty(STDERR_FILENO));
+    line.set([](double e) { return "  runs under way, " + fixed(e, 0) + " s elapsed"; });
+    study = run_convergence(config, ladder, o.jobs, &interrupt_token(), [&line](const JobProgress& p) {
+      // The ETA counts down from the last estimate between finished runs.
+      line.set([p](double e) {
+        char buf[128];
+        std::snprintf(buf, sizeof buf, "  %zu/%zu runs, %.0f s elapsed, ETA %.0f s", p.finished, p.total, e,
+                      std::max(0.0, p.eta_s - (e - p.elapsed_s)));
+        return std::string(buf);
+      });
+    });
+  }
   if (interrupt_token().stop_requested()) {
     print_error("convergence study interrupted");
     return kInterrupted;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 #include <unistd.h>
 
 namespace rotbeam::cli {
@@ -38,13 +39,20 @@ int run_sweep_command(const SweepCommandOptions& o) {
   options.dir = o.output_dir;
   options.jobs = o.jobs;
   const bool terminal = isatty(STDERR_FILENO);
-  options.on_case_finished = [terminal](const SweepProgress& p) {
+  auto line = std::make_unique<LiveLine>(terminal);
+  line->set([](double e) { return "cases under way, " + duration(e) + " elapsed"; });
+  options.on_case_finished = [terminal, &line](const SweepProgress& p) {
     if (terminal) {
+      // Redrawn every second: the clock moves and the ETA counts down between finished cases.
       const int width = 30, filled = p.total ? width * p.finished / p.total : width;
-      std::fprintf(stderr, "\r[%s%s] %d/%d cases%s, %s elapsed, ETA %s   ", std::string(filled, '#').c_str(),
-                   std::string(width - filled, '.').c_str(), p.finished, p.total,
-                   p.failed ? (", " + std::to_string(p.failed) + " failed").c_str() : "",
-                   duration(p.elapsed_s).c_str(), duration(p.eta_s).c_str());
+      const std::string bar = std::string(filled, '#') + std::string(width - filled, '.');
+      const int finished = p.finished, total = p.total, failed = p.failed;
+      const double at = p.elapsed_s, eta = p.eta_s;
+      line->set([=](double e) {
+        return "[" + bar + "] " + std::to_string(finished) + "/" + std::to_string(total) + " cases" +
+               (failed ? ", " + std::to_string(failed) + " failed" : "") + ", " + duration(e) + " elapsed, ETA " +
+               duration(std::max(0.0, eta - (e - at)));
+      });
     } else {
       std::string values;
       for (const std::string& ov : p.last->overrides) values += (values.empty() ? "" : ", ") + ov;
@@ -58,7 +66,7 @@ int run_sweep_command(const SweepCommandOptions& o) {
   install_interrupt_handlers();
   options.stop = &interrupt_token();
   const SweepReport r = run_sweep(axes, options);
-  if (terminal) std::fprintf(stderr, "\n");
+  line.reset();  // the progress line is cleared before the results are printed
   std::cout << r.cases.size() << " cases: " << r.ran << " run, " << r.resumed << " already done; " << r.failed
             << " stopped on a diagnosed failure, " << r.errors << " errors, " << r.interrupted << " interrupted\n";
   for (std::size_t i = 0; i < r.cases.size(); ++i)

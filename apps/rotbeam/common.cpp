@@ -56,6 +56,40 @@ std::function<void(const PassProgress&)> PassProgressLine::callback() {
   };
 }
 
+LiveLine::LiveLine(bool active) : active_(active), start_(std::chrono::steady_clock::now()) {
+  if (!active_) return;
+  ticker_ = std::thread([this] {
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (!wake_.wait_for(lock, std::chrono::seconds(1), [this] { return done_; })) draw_locked();
+  });
+}
+
+LiveLine::~LiveLine() {
+  if (!active_) return;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    done_ = true;
+  }
+  wake_.notify_all();
+  ticker_.join();
+  std::fprintf(stderr, "\r%100s\r", "");
+  std::fflush(stderr);
+}
+
+void LiveLine::set(std::function<std::string(double)> render) {
+  if (!active_) return;
+  std::lock_guard<std::mutex> lock(mutex_);
+  render_ = std::move(render);
+  draw_locked();
+}
+
+void LiveLine::draw_locked() {
+  if (!render_) return;
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  std::fprintf(stderr, "\r%s   ", render_(elapsed).c_str());
+  std::fflush(stderr);
+}
+
 ScratchFile::~ScratchFile() {
   if (!path_.empty()) std::remove(path_.c_str());
 }

@@ -7,8 +7,13 @@
 #include "rotbeam/stop_token.hpp"
 
 #include <CLI/CLI.hpp>
+#include <chrono>
+#include <condition_variable>
+#include <functional>
+#include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace rotbeam::cli {
@@ -52,6 +57,28 @@ public:
 
 private:
   bool active_ = false, shown_ = false;
+};
+
+/// A progress line of a study (many runs) on stderr when it is a terminal, redrawn every second so
+/// that its clock moves while long runs are under way, cleared at the end. `set` gives the text as a
+/// function of the elapsed wall time [s] (called under a lock, from this object's thread too).
+class LiveLine {
+public:
+  explicit LiveLine(bool active);
+  ~LiveLine();
+  LiveLine(const LiveLine&) = delete;
+  LiveLine& operator=(const LiveLine&) = delete;
+  void set(std::function<std::string(double elapsed_s)> render);
+
+private:
+  void draw_locked();
+  bool active_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool done_ = false;
+  std::function<std::string(double)> render_;
+  std::chrono::steady_clock::time_point start_;
+  std::thread ticker_;
 };
 
 /// A uniquely named file in the system's temporary folder, removed when this goes out of scope.
