@@ -6,30 +6,24 @@
 
 namespace rotbeam {
 
-double resident_memory_mib() {
-  std::ifstream status("/proc/self/status");
-  for (std::string line; std::getline(status, line);) {
-    if (line.rfind("VmRSS:", 0) == 0) {
-      std::istringstream s(line.substr(6));
+namespace {
+// The value [kiB] of the line "key: <n> kB" of a /proc file; 0 if absent.
+double proc_kib(const char* file, const std::string& key) {
+  std::ifstream in(file);
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind(key, 0) == 0) {
+      std::istringstream s(line.substr(key.size()));
       double kib = 0;
       s >> kib;
-      return kib / 1024.0;
+      return kib;
     }
   }
   return 0.0;
 }
+}  // namespace
 
-double available_memory_bytes() {
-  std::ifstream meminfo("/proc/meminfo");
-  for (std::string line; std::getline(meminfo, line);) {
-    if (line.rfind("MemAvailable:", 0) == 0) {
-      std::istringstream s(line.substr(13));
-      double kib = 0;
-      s >> kib;
-      return kib * 1024.0;
-    }
-  }
-  return 0.0;
-}
+double resident_memory_mib() { return proc_kib("/proc/self/status", "VmRSS:") / 1024.0; }
+
+double available_memory_bytes() { return proc_kib("/proc/meminfo", "MemAvailable:") * 1024.0; }
 
 }  // namespace rotbeam
