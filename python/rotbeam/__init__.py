@@ -18,6 +18,17 @@ runs with the GIL released, so threads can run cases concurrently.
 import errno
 import math
 import os
+import sys
+
+try:  # every result holds numpy arrays: without numpy, say so here in one line, not deep inside a run
+    import numpy  # noqa: F401
+except ImportError:
+    _hint = (f"rotbeam needs numpy, which {sys.executable} lacks: apt-get install python3-numpy "
+             "python3-matplotlib and use /usr/bin/python3 (Debian), or pip install numpy matplotlib")
+    if sys.argv[:1] == ["-m"]:  # `python3 -m rotbeam.plots` (what `rotbeam plot` runs): the CLI's one line
+        print(f"rotbeam: error: {_hint}", file=sys.stderr)
+        sys.exit(1)
+    raise ImportError(_hint, name=__name__) from None
 
 from ._core import ConfigError, config_keys
 from . import _core
