@@ -2,11 +2,13 @@
 
     python3 -m rotbeam.plots DIR [-o OUT]      # or: rotbeam plot DIR
 
-A run folder (history.csv, events.csv, summary.json) gives normal_force_vs_y.png (the thesis's
-figures), tip_path.png (the path with close-ups, thesis Figure 13), modal_coordinates.png,
-energy.png (the energy audit and the hub torque) and impacts.png. A sweep folder (sweep.csv) gives
-sweep_metrics.png and sweep_normal_force_vs_y.png, plus the pictures of each case with
---cases.
+A run folder (history.csv, events.csv, summary.json; force_bins.csv where the run wrote one) gives
+normal_force_vs_y.png (the thesis's figures: sustained contact's F_n, the impacts' impulses, and the
+mean force over bins of hub angle), tip_path.png (the path with close-ups, thesis Figure 13),
+modal_coordinates.png, energy.png (the Jacobi integral, why impacts move it, and the hub torque)
+and impacts.png. A sweep folder (sweep.csv) gives sweep_metrics.png and
+sweep_normal_force_vs_y.png, plus the pictures of each case with --cases. Each picture is also a
+function returning its matplotlib figure (force_figure, tip_path_figure, energy_figure, …).
 """
 
 import argparse
@@ -92,10 +94,13 @@ def animate(folder, output=None, **options):
 
 
 def read_csv(path):
+    """A CSV file as {column: numpy array} (numbers where every value is one; empty arrays for a file
+    that holds only its header)."""
     with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
+        reader = csv.DictReader(f)
+        rows = list(reader)
     columns = {}
-    for key in rows[0].keys() if rows else []:
+    for key in reader.fieldnames or []:
         values = [r[key] for r in rows]
         try:
             columns[key] = np.array([float(v) if v != "" else math.nan for v in values])
@@ -173,76 +178,264 @@ def _impacts(events):
     return [i for i, k in enumerate(events["kind"]) if k == "impact"]
 
 
+def impact_energy(h, events, summary):
+    """What the impacts drawn did to the Jacobi integral: {impacts, dh_j (Σ of h's jumps at them, from
+    the history rows before and after each), loss_j (Σ P(V⁻ + V⁺)/2, the impulses' work on the tip;
+    NaN for Coulomb impacts, whose tangential impulse events.csv does not hold), hub_j (Σ of the
+    hub's work during them)}, or None without impacts. h = E − ωH_z, so at an impact
+    Δh = loss − ω(R × P)_z = loss + ωY_tP for a normal impulse P along X."""
+    imp = _impacts(events)
+    if not imp:
+        return None
+    t = h["t_s"]
+    dh = 0.0
+    for i in imp:
+        rows = np.flatnonzero(t == events["t_s"][i])
+        if len(rows) < 2:
+            dh = math.nan
+            break
+        dh += h["jacobi_j"][rows[-1]] - h["jacobi_j"][rows[0]]
+    p = events["impulse_n_s"][imp]
+    loss = float(np.sum(p * (events["vx_before_m_s"][imp] + events["vx_after_m_s"][imp]) / 2))
+    if summary["config"].get("impact", {}).get("friction", "none") != "none":
+        loss = math.nan
+    return {"impacts": len(imp), "dh_j": dh, "loss_j": loss, "hub_j": float(np.nansum(events["hub_work_j"][imp]))}
+
+
+def relative_angle(theta_deg):
+    """Hub angle in (−180°, 180°] from the surface's deepest point (θ itself for one pass)."""
+    theta = np.asarray(theta_deg, dtype=float)
+    return np.where(np.abs(theta) <= 180.0, theta, 180.0 - np.mod(180.0 - theta, 360.0))
+
+
+def impact_impulses(events):
+    """(θ (°), tip Y (m), |P| (N·s)) of the impacts in events.csv: the momentum each gave the surface."""
+    imp = _impacts(events)
+    return (np.asarray(events["theta_deg"][imp], dtype=float), np.asarray(events["y_tip_m"][imp], dtype=float),
+            np.abs(np.asarray(events["impulse_n_s"][imp], dtype=float)))
+
+
+FORCE_BIN_COLUMNS = ("theta_from_deg", "theta_to_deg", "normal_impulse_n_s", "tangential_impulse_n_s",
+                     "mean_normal_force_n", "mean_tangential_force_n", "impacts")
+
+
+def force_bins(folder, h, events, summary, bin_deg=0.5):
+    """The normal force in bins of hub angle: (columns, source). From the run's force_bins.csv where it
+    has one; otherwise computed here from the files (each impact's |P| from events.csv, ∫F_n dt of
+    sustained contact by the trapezoidal rule on history.csv's rows), with the same bins: width
+    `bin_deg` from −180° over the relative hub angle, from the first bin that received momentum to
+    the last, mean force = the bin's momentum / the time the hub takes to turn through it."""
+    path = Path(folder) / "force_bins.csv"
+    if path.exists():
+        table = read_csv(path)
+        missing = [c for c in FORCE_BIN_COLUMNS if c not in table]
+        if missing:
+            raise ValueError(f"{path}: no column {missing[0]}")
+        return table, "force_bins.csv"
+    bin_deg = float((summary.get("binned_force") or {}).get("bin_deg") or bin_deg)
+    omega = summary["config"]["hub"]["speed_rpm"] * math.pi / 30.0
+    count = int(math.ceil(360.0 / bin_deg - 1e-9))
+
+    def index(angle):
+        return np.minimum((np.mod(np.asarray(angle) + 180.0, 360.0) / bin_deg).astype(int), count - 1)
+
+    normal = np.zeros(count)
+    impacts = np.zeros(count, dtype=int)
+    touched = np.zeros(count, dtype=bool)
+    theta, _, impulse = impact_impulses(events)
+    ok = np.isfinite(impulse)
+    k = index(theta[ok])
+    np.add.at(normal, k, impulse[ok])
+    np.add.at(impacts, k, 1)
+    touched[k] = True
+    pressed = np.isin(h["phase"], ["contact", "stick"])
+    seg = pressed[:-1] & pressed[1:] & (np.diff(h["t_s"]) > 0)
+    if seg.any():
+        dt = np.diff(h["t_s"])[seg]
+        f = 0.5 * (h["normal_force_n"][:-1][seg] + h["normal_force_n"][1:][seg])
+        mid = 0.5 * (h["theta_deg"][:-1][seg] + h["theta_deg"][1:][seg])
+        k = index(mid)
+        np.add.at(normal, k, f * dt)
+        touched[k] = True
+    if not touched.any():
+        return {c: np.array([]) for c in FORCE_BIN_COLUMNS}, "events.csv and history.csv"
+    first, last = np.flatnonzero(touched)[[0, -1]]
+    sl = slice(first, last + 1)
+    lo = -180.0 + np.arange(first, last + 1) * bin_deg
+    duration = bin_deg * math.pi / 180.0 / omega
+    return ({"theta_from_deg": lo, "theta_to_deg": np.minimum(180.0, lo + bin_deg),
+             "normal_impulse_n_s": normal[sl], "tangential_impulse_n_s": np.full(last + 1 - first, np.nan),
+             "mean_normal_force_n": normal[sl] / duration, "mean_tangential_force_n": np.full(last + 1 - first, np.nan),
+             "impacts": impacts[sl]}, "events.csv and history.csv")
+
+
+def sustained(h):
+    """The rows in sustained contact (sliding or stuck)."""
+    return np.isin(h["phase"], ["contact", "stick"])
+
+
 def plot_normal_force(h, events, summary, ax, label=None, **style):
-    contact = h["phase"] == "contact"
+    """Sustained-contact F_n against the tip's Y (mm); draws nothing (and no legend entry) for a pass
+    without sustained contact. Returns whether it drew."""
+    contact = sustained(h)
+    if not contact.any():
+        return False
     y = np.where(contact, h["y_tip_m"] * 1e3, np.nan)
     f = np.where(contact, h["normal_force_n"], np.nan)
-    ax.plot(y, f, label=label, **style)
-    return ax
+    line, = ax.plot(y, f, label=label, **style)
+    # A row in contact between two that are not (a pass stopped at its first contact step) is no line:
+    # a dot, so that nothing drawn is invisible.
+    alone = contact & ~np.r_[False, contact[:-1]] & ~np.r_[contact[1:], False]
+    if alone.any():
+        ax.plot(y[alone], f[alone], "o", ms=3, color=line.get_color())
+    return True
 
 
-def plot_run(folder, out):
-    folder, out = Path(folder), Path(out)
-    out.mkdir(parents=True, exist_ok=True)
-    h = read_csv(folder / "history.csv")
-    events = read_csv(folder / "events.csv")
-    summary = json.loads((folder / "summary.json").read_text())
-    title = case_title(summary)
-    written = []
-    imp = _impacts(events)
+def _stems(ax, x, height, color, label, **style):
+    ax.vlines(x, 0, height, color=color, lw=1, alpha=0.8)
+    ax.plot(x, height, "o", color=color, ms=3.5, label=label, **style)
 
-    # 1. Normal force against the tip's Y (the thesis's Figures 4–12).
-    fig, ax = plt.subplots(figsize=(8, 4.5))
-    plot_normal_force(h, events, summary, ax, color="C0", lw=1.2, label="sustained contact F_n")
-    if imp:
-        ax.plot(events["y_tip_m"][imp] * 1e3, np.zeros(len(imp)), "v", color="C3", ms=5,
-                label=f"impacts ({len(imp)})")
-    ax.set_xlabel("tip position Y (mm)")
-    ax.set_ylabel("normal force F_n (N)")
+
+def force_figure(folder, h, events, summary, title):
+    """normal_force_vs_y.png: the force the surface takes along it — sustained contact's F_n, the
+    impacts' impulses (an impact has no force, it has momentum) and the mean force over bins of hub
+    angle that puts both on one scale."""
+    fig, (ax, axb) = plt.subplots(2, 1, figsize=(9, 7), gridspec_kw={"height_ratios": [3, 1.7]})
     s = summary
-    ax.set_title(f"{title}\n{s['impacts']} impacts, {s['contact_episodes']} contact episodes, "
-                 f"peak {s['peak_normal_force_n']:.3g} N, impulse {1e3 * s['normal_impulse_n_s']:.4g} mN·s", fontsize=9)
+    _, y_i, p_i = impact_impulses(events)
+    has_contact = sustained(h).any()
+    headroom = 1.35 if has_contact else 1.7  # room for the legend (and the note) above the data
+    axp = None
+    if has_contact:
+        plot_normal_force(h, events, summary, ax, color="C0", lw=1.2, label="F_n in sustained contact (left axis)")
+        ax.set_ylabel("normal force F_n (N)")
+        ax.set_ylim(0, headroom * np.nanmax(np.where(sustained(h), h["normal_force_n"], np.nan)))
+    if len(p_i):
+        axp = ax.twinx() if has_contact else ax
+        where = ", right axis" if has_contact else ""
+        _stems(axp, y_i * 1e3, p_i * 1e3, "C3",
+               f"impact impulses |P| ({len(p_i)}, Σ {1e3 * np.nansum(p_i):.3g} mN·s{where})")
+        axp.set_ylabel("impact impulse |P| (mN·s)", color="C3" if has_contact else "k")
+        axp.set_ylim(0, headroom * np.nanmax(p_i) * 1e3)
+        if has_contact:
+            axp.tick_params(axis="y", colors="C3")
+    if not has_contact and len(p_i):
+        ax.text(0.02, 0.96, f"No sustained contact in this pass: the tip only struck\nthe surface "
+                f"({len(p_i)} impacts). An impact gives momentum, not a force:\nits impulse is drawn here, the "
+                "mean force over hub angle below.", transform=ax.transAxes, va="top", fontsize=8,
+                bbox=dict(boxstyle="round", fc="white", ec="0.7"))
+    elif not has_contact:
+        ax.text(0.5, 0.5, "the tip did not reach the surface: no contact, no impacts", transform=ax.transAxes,
+                ha="center", va="center", fontsize=9)
+        ax.set_xticks([])
+        ax.set_yticks([])
+    ax.set_xlabel("tip position Y (mm)")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    written.append(out / "normal_force_vs_y.png")
-    save_figure(fig, written[-1])
-    plt.close(fig)
+    lines, labels = ax.get_legend_handles_labels()
+    if axp is not None and axp is not ax:
+        more = axp.get_legend_handles_labels()
+        lines, labels = lines + more[0], labels + more[1]
+    if lines:
+        ax.legend(lines, labels, fontsize=8, loc="upper right" if not has_contact else "upper center",
+                  ncol=1 if not has_contact else 2)
+    if has_contact:
+        peak = f"peak F_n {s['peak_normal_force_n']:.3g} N in sustained contact"
+    else:
+        peak = "no sustained contact, so no instantaneous peak force"
+    ax.set_title(f"{title}\n{s['impacts']} impacts, {s['contact_episodes']} contact episodes, "
+                 f"normal impulse {1e3 * s['normal_impulse_n_s']:.4g} mN·s; {peak}", fontsize=9)
 
-    # 2. Tip path with close-ups (thesis Figure 13: −X against Y).
+    # The mean force over bins of hub angle: momentum per time, impacts and sustained contact alike.
+    bins, source = force_bins(folder, h, events, summary)
+    lo, hi = np.asarray(bins["theta_from_deg"], float), np.asarray(bins["theta_to_deg"], float)
+    if len(lo):
+        width = float(np.median(hi - lo))
+        mean = np.asarray(bins["mean_normal_force_n"], float)
+        axb.stairs(mean, np.append(lo, hi[-1]), color="C2", lw=1.2, fill=True, alpha=0.35,
+                   label=f"mean normal force over {width:g}° bins (momentum / time)")
+        with_imp = np.asarray(bins["impacts"], float) > 0
+        if with_imp.any():
+            axb.plot(0.5 * (lo + hi)[with_imp], mean[with_imp], "v", color="C3", ms=3.5,
+                     label="bins holding impacts")
+        if has_contact:
+            th = relative_angle(h["theta_deg"])
+            f = np.where(sustained(h), h["normal_force_n"], np.nan)
+            f[1:][np.diff(th) < 0] = np.nan
+            axb.plot(th, f, color="C0", lw=0.8, label="F_n in sustained contact")
+        k = int(np.nanargmax(mean))
+        peak_deg = 0.5 * (lo[k] + hi[k])
+        axb.set_xlim(lo[0] - 2 * width, hi[-1] + 2 * width)
+        axb.legend(fontsize=7, loc="upper right")
+        axb.set_title(f"Mean normal force over {width:g}{DEG} bins of hub angle: peak {mean[k]:.3g} N at "
+                      f"θ = {peak_deg:.4g}{DEG}\n(each bin's impulses and ∫F_n dt divided by the time the hub takes "
+                      f"to turn {width:g}{DEG}; from {source})", fontsize=8)
+    else:
+        axb.text(0.5, 0.5, "no momentum reached the surface: nothing to bin", transform=axb.transAxes,
+                 ha="center", va="center", fontsize=9)
+        axb.set_xticks([])
+        axb.set_yticks([])
+    axb.set_xlabel(f"hub angle θ ({DEG})")
+    axb.set_ylabel("force (N)")
+    axb.grid(alpha=0.3)
+    fig.tight_layout()
+    return fig
+
+
+def read_run(folder):
+    """(history, events, summary) of a run folder: columns by name, and summary.json."""
+    folder = Path(folder)
+    return (read_csv(folder / "history.csv"), read_csv(folder / "events.csv"),
+            json.loads((folder / "summary.json").read_text()))
+
+
+def tip_path_figure(h, events, summary, title):
+    """tip_path.png: −X against Y (thesis Figure 13) with close-ups, and the gap against θ."""
+    imp = _impacts(events)
     surface = surface_of(summary)
     fig, axes = plt.subplots(2, 2, figsize=(11, 8))
     phase_colors = {"free": "C0", "contact": "C1", "stick": "C2"}
     X, Y = h["x_tip_m"] * 1e3, h["y_tip_m"] * 1e3
+
     def path(ax):
         for ph, color in phase_colors.items():
             sel = h["phase"] == ph
-            if sel.any():
-                ax.plot(Y[sel], -X[sel], ".", ms=1.5, color=color, label=ph)
-        draw_surface(ax, surface, Y, color="k", lw=1, label="surface")
+            if sel.any():  # above the surface line: contact samples lie on it
+                ax.plot(Y[sel], -X[sel], ".", ms=1.5 if ph == "free" else 2.5, color=color, label=ph, zorder=3)
+        draw_surface(ax, surface, Y, color="k", lw=0.5, label="surface", zorder=2)
         if imp:
             y_imp = events["y_tip_m"][imp]
-            ax.plot(y_imp * 1e3, -surface_x(surface, y_imp) * 1e3, "v", color="C3", ms=4, label="impacts")
+            ax.plot(y_imp * 1e3, -surface_x(surface, y_imp) * 1e3, "v", color="C3", ms=4, label="impacts",
+                    zorder=4)
         ax.set_xlabel("tip position Y (mm)")
         ax.set_ylabel("−X (mm)")
         ax.grid(alpha=0.3)
+
+    def empty(ax, why):
+        ax.text(0.5, 0.5, why, transform=ax.transAxes, ha="center", va="center", fontsize=9)
+        ax.set_xticks([])
+        ax.set_yticks([])
+
     path(axes[0, 0])
     axes[0, 0].set_title("whole pass", fontsize=9)
     axes[0, 0].legend(fontsize=7, markerscale=2)
     near = h["gap_m"] > -2e-3
+    axes[0, 1].set_title("close-up: where the tip meets the surface", fontsize=9)
     if near.any():
         path(axes[0, 1])
         axes[0, 1].set_xlim(Y[near].min() - 1, Y[near].max() + 1)
         x_near = surface_x(surface, h["y_tip_m"][near]) * 1e3
         axes[0, 1].set_ylim(-x_near.max() - 0.05, -x_near.min() + 2.0)
-        axes[0, 1].set_title("close-up: the contact region", fontsize=9)
+    else:
+        empty(axes[0, 1], "the tip never came within 2 mm of the surface")
+    axes[1, 0].set_title("close-up: the first impact and the bounce back", fontsize=9)
     if imp:
         y0 = events["y_tip_m"][imp[0]] * 1e3
         x0 = float(surface_x(surface, [y0 * 1e-3])[0]) * 1e3
         path(axes[1, 0])
         axes[1, 0].set_xlim(y0 - 0.5, y0 + 1.5)
         axes[1, 0].set_ylim(-x0 - 0.01, -x0 + 0.3)
-        axes[1, 0].set_title("close-up: the first impact and the bounce back", fontsize=9)
+    else:
+        empty(axes[1, 0], "no impact in this pass")
     axes[1, 1].plot(h["theta_deg"], h["gap_m"] * 1e3, lw=0.8)
     axes[1, 1].axhline(0, color="k", lw=0.8)
     axes[1, 1].set_xlabel(f"hub angle θ ({DEG})")
@@ -253,11 +446,11 @@ def plot_run(folder, out):
     fig.suptitle(f"Tip path — {title}" + warning_line(summary), fontsize=10,
                  color="C3" if summary.get("warnings") else "k")
     fig.tight_layout()
-    written.append(out / "tip_path.png")
-    save_figure(fig, written[-1])
-    plt.close(fig)
+    return fig
 
-    # 3. Modal coordinates.
+
+def modal_figure(h, events, summary, title):
+    """modal_coordinates.png: q and q̇ against θ."""
     n = summary["config"]["beam"]["modes"]
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(9, 6), sharex=True)
     for i in range(1, n + 1):
@@ -271,38 +464,67 @@ def plot_run(folder, out):
         a.legend(fontsize=7, ncol=min(n, 6))
     a1.set_title(f"Modal coordinates — {title}", fontsize=10)
     fig.tight_layout()
-    written.append(out / "modal_coordinates.png")
-    save_figure(fig, written[-1])
-    plt.close(fig)
+    return fig
 
-    # 4. Energy audit and hub torque.
-    fig, (a1, a2) = plt.subplots(2, 1, figsize=(9, 6), sharex=True)
+
+def energy_note(ledger):
+    """Why the Jacobi integral jumps up at impacts with e < 1, with this run's numbers (impact_energy)."""
+    def uj(joules):
+        return f"{1e6 * joules:+.0f} µJ" if abs(joules) >= 1e-4 else f"{1e6 * joules:+.3g} µJ"
+
+    why = ("h rises at impacts even with e < 1: the surface, fixed in the inertial frame, moves in the hub's frame,"
+           "\nand its impulse P works on the tip: Δh = impact loss (≤ 0) + ωY_tP (> 0 where Y_t < 0, before the "
+           "deepest point).")
+    if math.isfinite(ledger["loss_j"]) and math.isfinite(ledger["dh_j"]):
+        why += (f"\nHere: loss {uj(ledger['loss_j'])} + moving surface {uj(ledger['dh_j'] - ledger['loss_j'])} "
+                f"= Δh {uj(ledger['dh_j'])} over the {ledger['impacts']} impacts; E = T + U: "
+                f"{uj(ledger['loss_j'] + ledger['hub_j'])} (loss + the hub's impulsive work).")
+    elif math.isfinite(ledger["dh_j"]):
+        why += f"\nHere the {ledger['impacts']} impacts change h by {uj(ledger['dh_j'])}."
+    return why
+
+
+def energy_figure(h, events, summary, title):
+    """energy.png: the Jacobi integral (with why impacts raise it) and the hub torque against θ."""
+    imp = _impacts(events)
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(9, 6.5), sharex=True)
     a1.plot(h["theta_deg"], (h["jacobi_j"] - h["jacobi_j"][0]) * 1e6, lw=1)
     for i in imp:
         a1.axvline(events["theta_deg"][i], color="C3", lw=0.4, alpha=0.5)
     a1.set_ylabel("h − h(0) (µJ)")
-    a1.set_title(f"Jacobi integral (changes only by contact work and impacts; red: impacts)\n"
+    a1.set_title(f"Jacobi integral h = T2 − T0 + U, the energy in the hub's rotating frame (red: impacts)\n"
                  f"energy-audit residual {summary['energy_audit_residual']:.2e} — {title}", fontsize=9)
+    ledger = impact_energy(h, events, summary)
+    if ledger is not None:
+        a1.text(0.01, 0.97, energy_note(ledger), transform=a1.transAxes, va="top", fontsize=7,
+                bbox=dict(boxstyle="round", fc="white", ec="0.7", alpha=0.9))
+        top = np.nanmax(h["jacobi_j"] - h["jacobi_j"][0]) * 1e6
+        bottom = np.nanmin(h["jacobi_j"] - h["jacobi_j"][0]) * 1e6
+        span = max(top - bottom, 1e-9)
+        a1.set_ylim(bottom - 0.05 * span, top + 0.45 * span)  # room for the note
     a2.plot(h["theta_deg"], h["hub_torque_n_m"] * 1e3, lw=0.8, color="C2")
     a2.set_ylabel("hub torque τ (mN·m)")
     a2.set_xlabel(f"hub angle θ ({DEG})")
     for a in (a1, a2):
         a.grid(alpha=0.3)
     fig.tight_layout()
-    written.append(out / "energy.png")
-    save_figure(fig, written[-1])
-    plt.close(fig)
+    return fig
 
-    # 5. Impacts.
+
+def impacts_figure(h, events, summary, title):
+    """impacts.png: V_X before and after, and e, at each impact."""
+    imp = _impacts(events)
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(9, 6), sharex=True)
     if imp:
         th = events["theta_deg"][imp]
         a1.plot(th, events["vx_before_m_s"][imp], "o", ms=4, label="V_X before")
         a1.plot(th, events["vx_after_m_s"][imp], "s", ms=4, label="V_X after")
         a2.plot(th, events["restitution"][imp], "o", ms=4, color="C2")
+        a1.legend(fontsize=8)
+    else:
+        a1.text(0.5, 0.5, "no impact in this pass", transform=a1.transAxes, ha="center", va="center")
     a1.axhline(0, color="k", lw=0.6)
     a1.set_ylabel("normal tip velocity (m/s)")
-    a1.legend(fontsize=8)
     a2.set_ylabel("restitution e")
     a2.set_ylim(-0.05, 1.05)
     a2.set_xlabel(f"hub angle θ ({DEG})")
@@ -310,66 +532,190 @@ def plot_run(folder, out):
     for a in (a1, a2):
         a.grid(alpha=0.3)
     fig.tight_layout()
-    written.append(out / "impacts.png")
-    save_figure(fig, written[-1])
-    plt.close(fig)
+    return fig
+
+
+def plot_run(folder, out):
+    folder, out = Path(folder), Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    h, events, summary = read_run(folder)
+    title = case_title(summary)
+    written = []
+    for name, draw in (("normal_force_vs_y", lambda: force_figure(folder, h, events, summary, title)),
+                       ("tip_path", lambda: tip_path_figure(h, events, summary, title)),
+                       ("modal_coordinates", lambda: modal_figure(h, events, summary, title)),
+                       ("energy", lambda: energy_figure(h, events, summary, title)),
+                       ("impacts", lambda: impacts_figure(h, events, summary, title))):
+        fig = draw()
+        try:
+            written.append(out / f"{name}.png")
+            save_figure(fig, written[-1])
+        finally:
+            plt.close(fig)
     return written
 
 
-def plot_sweep(folder, out, cases=False):
-    folder, out = Path(folder), Path(out)
-    out.mkdir(parents=True, exist_ok=True)
+def value_text(v):
+    """A sweep value as it was meant: 550 and 0.1, not 550.0 (numbers with %g; others as written)."""
+    if isinstance(v, (float, np.floating)):
+        return f"{v:g}"
+    return str(v)
+
+
+LINESTYLES = ["-", "--", ":", "-."]
+MARKERS = ["o", "s", "^", "D", "v", "P", "X", "*"]
+
+
+def series_styles(series):
+    """A distinct (colour, linestyle, marker) for every series, each a tuple of values: with two or more
+    values per series and at most 10 × 4 combinations, the colour follows the first value and the
+    line style and marker the rest; otherwise series i gets colour i mod 10 and line style and marker
+    from i // 10 (distinct for any number of series)."""
+    firsts = list(dict.fromkeys(t[0] for t in series))
+    rests = list(dict.fromkeys(t[1:] for t in series))
+    styles = []
+    for i, t in enumerate(series):
+        if len(t) > 1 and len(firsts) <= 10 and len(rests) <= len(LINESTYLES):
+            c, k = firsts.index(t[0]), rests.index(t[1:])
+        else:
+            c, k = i % 10, i // 10
+        styles.append({"color": f"C{c}", "linestyle": LINESTYLES[k % len(LINESTYLES)],
+                       "marker": MARKERS[k % len(MARKERS)]})
+    return styles
+
+
+def _of(count, total, noun="cases"):
+    """'1 of 4 cases has' / '2 of 4 cases have'."""
+    return f"{count} of {total} {noun} {'has' if count == 1 else 'have'}"
+
+
+def _cases_note(table, ok):
+    """The title's plain words on the cases without results and those stopped on a failure."""
+    n = len(table["case"])
+    notes = []
+    missing = [i for i in range(n) if not ok[i]]
+    if missing:
+        named = ", ".join(f"{table['folder'][i]} ({table['status'][i]})" for i in missing[:4])
+        notes.append(f"{_of(len(missing), n)} no results, not drawn: {named}{', …' if len(missing) > 4 else ''}")
+    failed = [i for i in range(n) if ok[i] and table["status"][i] == "failed"]
+    if failed:
+        named = ", ".join(table["folder"][i] for i in failed[:4])
+        notes.append(f"{len(failed)} of {n} cases stopped on a diagnosed failure, drawn up to the stop: "
+                     f"{named}{', …' if len(failed) > 4 else ''}")
+    return "".join("\n" + line for line in notes)
+
+
+def _legend_beside(fig, handles, labels, **options):
+    """A legend right of the panels, never over the data; returns the share of the width left to them."""
+    legend = fig.legend(handles, labels, loc="center right", **options)
+    fig.canvas.draw()
+    return 1.0 - legend.get_window_extent().width / fig.bbox.width - 0.01
+
+
+def read_sweep(folder):
+    """(table, keys, ok) of a sweep folder: sweep.csv's columns, the varied keys (the columns between
+    `folder` and `status`, docs/cli.md) and which cases have results (done, resumed, or failed: stopped
+    on a diagnosed failure, their files kept). A case with results whose files are missing or damaged
+    raises DamagedFolder."""
+    folder = Path(folder)
     table = read_csv(folder / "sweep.csv")
-    keys = [k for k in table if k not in ("case", "folder", "status", "message") and k not in METRICS]
-    written = []
+    columns = list(table)
+    keys = columns[columns.index("folder") + 1:columns.index("status")]
     ok = np.isin(table["status"], ["done", "resumed", "failed"])
     for f, good in zip(table["folder"], ok):
         if good:  # a case with results must have its files: a missing or damaged one is named
             if not (folder / f / "summary.json").exists():
                 raise DamagedFolder(f"{folder / f / 'summary.json'}: missing (sweep.csv lists results for {f})")
             check_run_files(folder / f)
-    first = keys[0]
-    second = keys[1] if len(keys) > 1 else None
+    return table, keys, ok
+
+
+def sweep_metrics_figure(table, keys, ok):
+    """sweep_metrics.png: six metrics against the first varied key, a line per value of the others."""
+    first, rest = keys[0], keys[1:]
     x = table[first]
+    groups = list(dict.fromkeys(tuple(table[k][i] for k in rest) for i in range(len(x)) if ok[i]))
+    try:
+        groups.sort()
+    except TypeError:
+        pass
+    styles = series_styles(groups) if rest else [{"color": "C0", "linestyle": "-", "marker": "o"}] * len(groups)
     fig, axes = plt.subplots(2, 3, figsize=(14, 7.5))
-    for ax, (metric, label) in zip(axes.flat, [
-        ("impacts", "impacts"), ("contact_episodes", "contact episodes"), ("last_separation_deg", f"last separation ({DEG})"),
-        ("peak_normal_force_n", "peak F_n (N)"), ("normal_impulse_n_s", "normal impulse (N·s)"),
-        ("max_tip_deflection_ratio", "max |y_t|/L")]):
-        groups = sorted(set(table[second][ok])) if second else [None]
-        for g in groups:
-            sel = ok & ((table[second] == g) if second else True)
+    for ax, (metric, scale, label) in zip(axes.flat, [
+            ("impacts", 1, "impacts"), ("contact_episodes", 1, "contact episodes"),
+            ("last_separation_deg", 1, f"last separation ({DEG})"),
+            ("peak_normal_force_n", 1, "peak F_n in sustained contact (N)"),
+            ("normal_impulse_n_s", 1e3, "normal impulse (mN·s)"), ("max_tip_deflection_ratio", 1, "max |y_t|/L")]):
+        for g, style in zip(groups, styles):
+            sel = ok.copy()
+            for k, v in zip(rest, g):
+                sel &= table[k] == v
             order = np.argsort(x[sel].astype(float)) if x.dtype.kind == "f" else np.arange(sel.sum())
-            ax.plot(x[sel][order], table[metric][sel][order], "o-", ms=4, label=f"{second} = {g}" if second else None)
+            label_g = ", ".join(f"{k} = {value_text(v)}" for k, v in zip(rest, g)) or None
+            ax.plot(x[sel][order], table[metric][sel][order] * scale, ms=4, label=label_g, **style)
         ax.set_xlabel(first)
         ax.set_ylabel(label)
         ax.grid(alpha=0.3)
-    if second:
-        axes[0, 0].legend(fontsize=7)
-    fig.suptitle(f"Sweep of {len(table['case'])} cases over {', '.join(keys)} "
-                 f"({int((~ok).sum())} without results)", fontsize=10)
-    fig.tight_layout()
-    written.append(out / "sweep_metrics.png")
-    save_figure(fig, written[-1])
-    plt.close(fig)
+        if not ok.any():
+            ax.text(0.5, 0.5, "no case has results", transform=ax.transAxes, ha="center", va="center")
+    fig.suptitle(f"Sweep of {len(table['case'])} cases over {', '.join(keys)}{_cases_note(table, ok)}", fontsize=10)
+    right = _legend_beside(fig, *axes[0, 0].get_legend_handles_labels(), fontsize=8) if rest and ok.any() else 1.0
+    fig.tight_layout(rect=(0, 0, right, 1))
+    return fig
 
+
+def sweep_force_figure(folder, table, keys, ok, folders):
+    """sweep_normal_force_vs_y.png: every case's sustained-contact F_n against the tip's Y; the cases
+    made of impacts alone are named, not drawn."""
+    folder = Path(folder)
+    fig, ax = plt.subplots(figsize=(11, 5.5))
+    where = {f: i for i, f in enumerate(table["folder"])}
+    values = [tuple(table[k][where[f]] for k in keys) for f in folders]
+    impacts_only = []
+    for f, v, style in zip(folders, values, series_styles(values)):
+        h, _, summary = read_run(folder / f)
+        label = ", ".join(value_text(u) for u in v)
+        if not plot_normal_force(h, None, summary, ax, label=label, lw=1.1, **dict(style, marker=None)):
+            impacts_only.append(label)
+    ax.set_xlabel("tip position Y (mm)")
+    ax.set_ylabel("normal force F_n (N)")
+    ax.grid(alpha=0.3)
+    title = "Sustained-contact normal force along the surface, every case"
+    if impacts_only:
+        shown = "; ".join(impacts_only[:6]) + ("; …" if len(impacts_only) > 6 else "")
+        title += (f"\n{_of(len(impacts_only), len(folders), 'cases with results')} no sustained contact "
+                  f"(impacts only: see their normal_force_vs_y.png), not drawn: {shown}")
+    right = 1.0
+    if len(impacts_only) < len(folders):
+        right = _legend_beside(fig, *ax.get_legend_handles_labels(), fontsize=7, title=", ".join(keys),
+                               title_fontsize=7)
+    else:
+        ax.text(0.5, 0.5, "no case has sustained contact: every one is made of impacts only",
+                transform=ax.transAxes, ha="center", va="center")
+    ax.set_title(title + _cases_note(table, ok), fontsize=9)
+    fig.tight_layout(rect=(0, 0, right, 1))
+    return fig
+
+
+def plot_sweep(folder, out, cases=False):
+    folder, out = Path(folder), Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    table, keys, ok = read_sweep(folder)
+    written = []
+    fig = sweep_metrics_figure(table, keys, ok)
+    try:
+        written.append(out / "sweep_metrics.png")
+        save_figure(fig, written[-1])
+    finally:
+        plt.close(fig)
     folders = [f for f, good in zip(table["folder"], ok) if good and (folder / f / "history.csv").exists()]
     if folders and len(folders) <= 24:
-        fig, ax = plt.subplots(figsize=(9, 5))
-        for i, f in enumerate(folders):
-            h = read_csv(folder / f / "history.csv")
-            summary = json.loads((folder / f / "summary.json").read_text())
-            label = ", ".join(f"{k}={table[k][list(table['folder']).index(f)]}" for k in keys)
-            plot_normal_force(h, None, summary, ax, label=label, lw=1, color=f"C{i % 10}")
-        ax.set_xlabel("tip position Y (mm)")
-        ax.set_ylabel("normal force F_n (N)")
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
-        ax.set_title("Sustained-contact normal force along the surface, every case", fontsize=10)
-        fig.tight_layout()
-        written.append(out / "sweep_normal_force_vs_y.png")
-        save_figure(fig, written[-1])
-        plt.close(fig)
+        fig = sweep_force_figure(folder, table, keys, ok, folders)
+        try:
+            written.append(out / "sweep_normal_force_vs_y.png")
+            save_figure(fig, written[-1])
+        finally:
+            plt.close(fig)
     if cases:
         for f in folders:
             written += plot_run(folder / f, out / f)
