@@ -124,7 +124,7 @@ py::tuple run(const std::optional<std::string>& path, const Values& overrides) {
   const PassResult result = interruptible([&](const StopToken& stop) { return run_case(c, {nullptr, &stop}); });
   const nlohmann::json summary = summary_json(result, config, *c.surface);
   return py::make_tuple(from_json(summary), history_arrays(result, config.beam.modes), event_dicts(result),
-                        py::bytes(revolutions_csv(result, config.beam.modes)));
+                        py::bytes(revolutions_csv(result, config.beam.modes)), py::bytes(force_bins_csv(result)));
 }
 
 py::object impact(const std::optional<std::string>& path, const Values& overrides) {
@@ -200,7 +200,8 @@ PYBIND11_MODULE(_core, m) {
     }
   });
   m.def("run", &run, py::arg("path"), py::arg("overrides"),
-        "A whole pass: (summary dict, history dict of arrays, list of event dicts, revolutions.csv's text).");
+        "A whole pass: (summary dict, history dict of arrays, list of event dicts, revolutions.csv's text, "
+        "force_bins.csv's text).");
   m.def("impact", &impact, py::arg("path"), py::arg("overrides"),
         "The first impact as a dict (the fields of `rotbeam impact --json`), or None without impact.");
   m.def("modes", &modes, py::arg("path"), py::arg("overrides"), py::arg("speeds_rpm"),

@@ -166,11 +166,13 @@ TEST(PassFiles, OneRunAtATimeInAFolderAndLeftoversOfAKilledRunAreRemoved) {
 
 TEST(PassFiles, TheHistoryEstimateMatchesWhatARunWrites) {
   // estimate_history predicts the rows and bytes of history.csv before a run (the disk check and
-  // the size note depend on it): within −8 % … +10 % of the rows written (contact is sampled at
-  // every step, a little more than the interval gives) and of the bytes (the width of %.17g numbers
-  // varies), over one pass (rigid and flexible starts, another speed and interval) and many
-  // revolutions keeping two. (Where the steps are longer than the interval there are fewer rows:
-  // the estimate is then an upper bound.)
+  // the size note depend on it), over one pass (rigid and flexible starts, another speed and
+  // interval) and many revolutions keeping two. Far from the surface rows come at the interval and
+  // the rigid turn's are counted exactly; near the surface they come at near_surface_interval_s
+  // over a stretch that the bounce and rub set and the estimate takes from the undeformed tip, so
+  // it is within −15 % … +25 % of the rows and bytes written. min_rows, which refuses a run that
+  // cannot fit, must never exceed what is written. (Where the steps are longer than the interval
+  // there are fewer rows: the estimate is then an upper bound.)
   const std::vector<std::vector<std::string>> cases = {
       {},
       {"hub.speed_rpm=3000", "output.interval_s=2e-6"},
@@ -194,10 +196,11 @@ TEST(PassFiles, TheHistoryEstimateMatchesWhatARunWrites) {
     std::ifstream in(dir / "history.csv");
     const double rows = std::count(std::istreambuf_iterator<char>(in), {}, '\n') - 1.0;
     const double bytes = static_cast<double>(fs::file_size(dir / "history.csv"));
-    EXPECT_GT(e.rows / rows, 0.92) << k << ": estimated " << e.rows << " rows, wrote " << rows;
-    EXPECT_LT(e.rows / rows, 1.10) << k << ": estimated " << e.rows << " rows, wrote " << rows;
-    EXPECT_GT(e.csv_bytes / bytes, 0.92) << k << ": estimated " << e.csv_bytes << " bytes, wrote " << bytes;
-    EXPECT_LT(e.csv_bytes / bytes, 1.10) << k << ": estimated " << e.csv_bytes << " bytes, wrote " << bytes;
+    EXPECT_GT(e.rows / rows, 0.85) << k << ": estimated " << e.rows << " rows, wrote " << rows;
+    EXPECT_LT(e.rows / rows, 1.25) << k << ": estimated " << e.rows << " rows, wrote " << rows;
+    EXPECT_GT(e.csv_bytes / bytes, 0.85) << k << ": estimated " << e.csv_bytes << " bytes, wrote " << bytes;
+    EXPECT_LT(e.csv_bytes / bytes, 1.25) << k << ": estimated " << e.csv_bytes << " bytes, wrote " << bytes;
+    EXPECT_LE(e.min_rows, rows) << k;
     fs::remove_all(dir);
   }
   // Unknown with every step sampled; refused (naming the key) where it cannot fit.

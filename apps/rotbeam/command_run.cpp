@@ -35,8 +35,16 @@ void print_summary(const Config& config, const PassResult& r, const std::string&
               << fixed(s.last_separation_deg, 3) << "° (last separation)\n";
   else
     std::cout << "  contact span          none: the tip never reached the surface\n";
-  std::cout << "  peak normal force     " << fixed(s.peak_normal_force_n, 4) << " N (mean in contact "
-            << fixed(s.mean_normal_force_n, 4) << " N)\n";
+  if (s.contact_episodes > 0 || s.contact_time_s > 0)
+    std::cout << "  peak normal force     " << fixed(s.peak_normal_force_n, 4) << " N (mean in contact "
+              << fixed(s.mean_normal_force_n, 4) << " N)\n";
+  else if (s.impacts > 0)
+    std::cout << "  peak normal force     none at any instant: no sustained contact, the pass is " << s.impacts
+              << (s.impacts == 1 ? " impact" : " impacts") << "\n";
+  if (s.impacts > 0)
+    std::cout << "  binned force          peak " << fixed(s.binned_force.peak_normal_force_n, 4) << " N normal, "
+              << fixed(s.binned_force.peak_tangential_force_n, 4) << " N tangential (momentum per "
+              << number_text(s.binned_force.bin_deg) << "° bin of hub angle, impacts included; force_bins.csv)\n";
   std::cout << "  normal impulse        " << s.normal_impulse_n_s * 1e3 << " mN s\n";
   std::cout << "  friction work         " << s.friction_work_j * 1e3 << " mJ\n";
   std::cout << "  max |y_t|/L           " << fixed(s.max_tip_deflection_ratio, 4) << "\n";
@@ -57,7 +65,7 @@ void print_summary(const Config& config, const PassResult& r, const std::string&
   for (const std::string& w : s.warnings) std::cout << "  warning: " << w << "\n";
   std::cout << "  wrote " << (std::filesystem::path(dir) / "history.csv").string() << ", events.csv, "
             << (std::filesystem::exists(std::filesystem::path(dir) / "revolutions.csv") ? "revolutions.csv, " : "")
-            << "summary.json\n";
+            << "force_bins.csv, summary.json\n";
 }
 
 int run_pass_command(const RunOptions& o) {

@@ -3,6 +3,7 @@
 // driver over the configured scheme's stepper.
 #pragma once
 
+#include "rotbeam/force_bins.hpp"
 #include "rotbeam/outcome.hpp"
 #include "rotbeam/pass_options.hpp"
 #include "rotbeam/stepper.hpp"
@@ -140,6 +141,9 @@ struct PassSummary {
   double mean_hub_torque_n_m = NAN;      // of the last complete revolution
   double mean_hub_power_w = NAN;
   SteadyState steady_state;
+  // The force on the surface in hub-angle bins of output.bin_deg, impacts included (force_bins.hpp):
+  // over the pass, or over the last complete revolution of a run over many.
+  BinnedForcePeaks binned_force;
 };
 
 /// Receives the history rows and events of a pass as they are produced, so that memory stays
@@ -158,6 +162,7 @@ struct PassResult {
   std::vector<PassEvent> events;    // likewise
   PassSummary summary;
   std::vector<RevolutionRecord> revolutions;  // one per revolution (runs over many)
+  std::vector<ForceBin> force_bins;           // the bins of summary.binned_force (force_bins.csv)
   Eigen::VectorXd final_q, final_qd;          // the state where the run ended [m], [m/s]
   double final_t = 0;                         // [s]
   std::optional<NumericalFailure> failure;

@@ -54,6 +54,12 @@ struct PassOptions {
   // Recording.
   double output_interval_s = 1e-5;    // output.interval_s: history sampling (events always recorded exactly)
   int history_revolutions = 1;        // output.history_revolutions: history and events of the last K revolutions (0: all)
+  // While the tip is within near_surface_gap_m of the surface (C > −gap), rows every
+  // near_surface_interval_s (free flight: on the stepper's dense output where it has one; 0: every
+  // accepted step) so that impacts, bounces and separations are drawn from many points (SPEC §7).
+  double near_surface_interval_s = 2e-6;  // output.near_surface_interval_s [s]
+  double near_surface_gap_m = 5e-4;       // output.near_surface_gap_m [m] (0: off)
+  double bin_deg = 0.5;                   // output.bin_deg: hub-angle bins of the force on the surface [°]
 };
 
 }  // namespace rotbeam

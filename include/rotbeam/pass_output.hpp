@@ -33,6 +33,8 @@ std::string revolutions_csv(const PassResult& result, int n);
 /// The whole files of an in-memory result.
 std::string history_csv(const PassResult& result, int n);
 std::string events_csv(const PassResult& result);
+/// force_bins.csv (SPEC §7): the force on the surface in hub-angle bins, impacts included.
+std::string force_bins_csv(const PassResult& result);
 /// summary.json: the metrics, contact intervals, warnings, failure (or null), the surface as it
 /// describes itself, and the resolved config.
 nlohmann::json summary_json(const PassResult& result, const Config& config, const Surface& surface);

@@ -113,6 +113,12 @@ public:
   virtual void begin_contact(const FilamentState& state, double lambda0) = 0;
   /// One step of the current phase from `state`, never beyond t_stop.
   virtual StepOutcome step(FilamentState& state, double t_stop) = 0;
+  /// The free-flight state at t inside the step just taken (CVODE's CVodeGetDky at order 0), into
+  /// q [m] and qd [m/s]; false where the scheme keeps no dense output (the thesis's) or in contact.
+  virtual bool interpolate(double t, Eigen::VectorXd& q, Eigen::VectorXd& qd) {
+    (void)t, (void)q, (void)qd;
+    return false;
+  }
   virtual const StepperStatistics& statistics() const = 0;
 };
 

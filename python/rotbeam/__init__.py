@@ -20,6 +20,10 @@ import math
 import os
 import sys
 
+if sys.argv[:1] == ["-m"]:  # `python3 -m rotbeam.plots` (what `rotbeam plot` runs) while it imports
+    from ._interrupt import stop_quietly_on_interrupt
+    stop_quietly_on_interrupt()  # a Ctrl-C during the imports below ends quietly, as the module would
+
 try:  # every result holds numpy arrays: without numpy, say so here in one line, not deep inside a run
     import numpy  # noqa: F401
 except ImportError:
@@ -106,8 +110,9 @@ def _arguments(config, overrides):
     return path, sets
 
 
-def _revolution_arrays(text):
-    """revolutions.csv's text as {column: numpy array} (empty arrays for a run of one pass)."""
+def _table_arrays(text):
+    """revolutions.csv's or force_bins.csv's text as {column: numpy array} (empty arrays for a
+    table without rows)."""
     import numpy as np
     lines = text.decode().splitlines()
     names = lines[0].split(",")
@@ -115,7 +120,7 @@ def _revolution_arrays(text):
     out = {}
     for k, name in enumerate(names):
         values = [r[k] for r in rows]
-        if name in ("revolution", "impacts", "contact_episodes"):
+        if name in ("revolution", "impacts", "contact_episodes"):  # whole numbers in both tables
             out[name] = np.array([int(v) for v in values], dtype=np.int64)
         elif name == "complete":
             out[name] = np.array([v == "true" for v in values], dtype=bool)
@@ -127,15 +132,18 @@ def _revolution_arrays(text):
 class Result:
     """A whole pass or a run over many revolutions: `summary` (the keys of summary.json), `history`
     (numpy arrays by the column names of history.csv), `events` (dicts with the columns of
-    events.csv) and `revolutions` (numpy arrays by the column names of revolutions.csv, one entry per
-    revolution; empty for one pass). History and events hold the last `output.history_revolutions`
-    revolutions, as the files do; `revolutions` holds every one."""
+    events.csv), `revolutions` (numpy arrays by the column names of revolutions.csv, one entry per
+    revolution; empty for one pass) and `force_bins` (numpy arrays by the column names of
+    force_bins.csv: the force on the surface in hub-angle bins, impacts included). History and
+    events hold the last `output.history_revolutions` revolutions, as the files do; `revolutions`
+    holds every one."""
 
-    def __init__(self, summary, history, events, revolutions=None):
+    def __init__(self, summary, history, events, revolutions=None, force_bins=None):
         self.summary = summary
         self.history = history
         self.events = events
         self.revolutions = revolutions if revolutions is not None else {}
+        self.force_bins = force_bins if force_bins is not None else {}
 
     @property
     def failure(self):
@@ -154,8 +162,8 @@ def run(config=None, overrides=None):
     Result.failure with everything computed up to it. Ctrl-C stops the pass within a step and
     raises KeyboardInterrupt."""
     path, sets = _arguments(config, overrides)
-    summary, history, events, revolutions = _core.run(path, sets)
-    return Result(summary, history, events, _revolution_arrays(revolutions))
+    summary, history, events, revolutions, force_bins = _core.run(path, sets)
+    return Result(summary, history, events, _table_arrays(revolutions), _table_arrays(force_bins))
 
 
 def impact(config=None, overrides=None):

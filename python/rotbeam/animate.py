@@ -51,11 +51,11 @@ def _shape_overrides(summary):
 
 
 def with_rigid_approach(history, summary, step_deg=0.05):
-    """The history with the rigid approach filled in: a rigid start records the state at θ0 and
-    next at the first impact (the undeformed filament turns rigidly in between, q = 0, SPEC §4.6
-    Step 1). Rows every `step_deg` of that turn are added, exact (q = 0, t = (θ − θ0)/ω), so that
-    an animation shows the filament approaching the surface. Other histories are returned as they
-    are."""
+    """The history with the rigid approach filled in, for histories written before runs recorded
+    it: such a rigid start has the state at θ0 and next at the first impact (the undeformed
+    filament turns rigidly in between, q = 0, SPEC §4.6 Step 1). Rows every `step_deg` of that
+    turn are added, exact (q = 0, t = (θ − θ0)/ω), so that an animation shows the filament
+    approaching the surface. Histories that record the turn are returned as they are."""
     c = summary["config"]
     theta = history["theta_deg"]
     n = c["beam"]["modes"]

@@ -97,6 +97,16 @@ public:
 
   const StepperStatistics& statistics() const override { return stats_; }
 
+  bool interpolate(double t, Eigen::VectorXd& q, Eigen::VectorXd& qd) override {
+    if (phase_ != Phase::free) return false;
+    stepper_.calc_state(t, xs_);  // the dense output of the last step, which holds t
+    for (int i = 0; i < n_; ++i) {
+      q[i] = xs_[i];
+      qd[i] = xs_[n_ + i];
+    }
+    return true;
+  }
+
 private:
   // ---- state packing ------------------------------------------------------------------------
   void pack() {

@@ -266,6 +266,15 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
       {"simulation.deflection_warning_ratio", [](Parsed& p, auto& k, auto& n) { p.config.simulation.deflection_warning_ratio = number_in(k, n, 0.0, 100.0, true, false); }},
       {"simulation.deflection_limit_is_error", [](Parsed& p, auto& k, auto& n) { p.config.simulation.deflection_limit_is_error = boolean(k, n); }},
       {"output.interval_s", [](Parsed& p, auto& k, auto& n) { p.config.simulation.output_interval_s = number_in(k, n, 0.0, 1e30, false, false); }},
+      {"output.near_surface_interval_s",
+       [](Parsed& p, auto& k, auto& n) {
+         // Below 1e-9 s a near-surface stretch of a millisecond would hold a million rows.
+         const double v = number_in(k, n, 0.0, 1.0, false, false);
+         if (v > 0.0 && v < 1e-9) fail(k, n, "must be 0 (a row at every accepted step) or at least 1e-9 s");
+         p.config.simulation.near_surface_interval_s = v;
+       }},
+      {"output.near_surface_gap_m", [](Parsed& p, auto& k, auto& n) { p.config.simulation.near_surface_gap_m = number_in(k, n, 0.0, 1.0, false, false); }},
+      {"output.bin_deg", [](Parsed& p, auto& k, auto& n) { p.config.simulation.bin_deg = number_in(k, n, 0.01, 90.0, false, false); }},
       {"output.history_revolutions",
        [](Parsed& p, auto& k, auto& n) {
          // The last K revolutions' history and events, or "all" (stored as 0).
@@ -522,6 +531,9 @@ nlohmann::json Config::to_json() const {
                      {"steady_method", steady_method_name(sim.steady_method)},
                      {"multipliers", sim.multipliers}};
   j["output"] = {{"interval_s", sim.output_interval_s},
+                 {"near_surface_interval_s", sim.near_surface_interval_s},
+                 {"near_surface_gap_m", sim.near_surface_gap_m},
+                 {"bin_deg", sim.bin_deg},
                  {"history_revolutions",
                   sim.history_revolutions == 0 ? nlohmann::json("all") : nlohmann::json(sim.history_revolutions)}};
   j["compat"] = {{"thesis_forces", contact.friction.thesis_forces},

@@ -100,6 +100,22 @@ std::string events_csv(const PassResult& result) {
   return out;
 }
 
+std::string force_bins_csv(const PassResult& result) {
+  std::string out =
+      "theta_from_deg,theta_to_deg,normal_impulse_n_s,tangential_impulse_n_s,mean_normal_force_n,"
+      "mean_tangential_force_n,impacts\n";
+  for (const ForceBin& b : result.force_bins) {
+    for (double v : {b.from_deg, b.to_deg, b.normal_impulse_n_s, b.tangential_impulse_n_s, b.mean_normal_force_n,
+                     b.mean_tangential_force_n}) {
+      put(out, v);
+      out += ',';
+    }
+    out += std::to_string(b.impacts);
+    out += '\n';
+  }
+  return out;
+}
+
 std::string revolutions_header(int n) {
   std::string h =
       "revolution,complete,t_start_s,t_end_s,impacts,contact_episodes,first_impact_deg,last_separation_deg,"
@@ -153,6 +169,10 @@ nlohmann::json summary_json(const PassResult& result, const Config& config, cons
   j["peak_normal_force_n"] = s.peak_normal_force_n;
   j["mean_normal_force_n"] = s.mean_normal_force_n;
   j["normal_impulse_n_s"] = s.normal_impulse_n_s;
+  j["binned_force"] = {{"bin_deg", s.binned_force.bin_deg},
+                       {"peak_normal_force_n", s.binned_force.peak_normal_force_n},
+                       {"peak_tangential_force_n", s.binned_force.peak_tangential_force_n},
+                       {"peak_normal_at_deg", number_or_null(s.binned_force.peak_normal_at_deg)}};
   j["friction_work_j"] = s.friction_work_j;
   j["damping_work_j"] = s.damping_work_j;
   j["hub_work_j"] = s.hub_work_j;
@@ -259,13 +279,14 @@ PassFiles::PassFiles(const std::filesystem::path& dir, int n, int history_revolu
     // A folder under one of the names the run writes would make the final rename fail after the
     // whole computation: refused before it starts.
     std::error_code ec;
-    for (const char* name : {"history.csv", "events.csv", "revolutions.csv", "summary.json"})
+    for (const char* name : {"history.csv", "events.csv", "revolutions.csv", "force_bins.csv", "summary.json"})
       if (fs::is_directory(fs::symlink_status(dir / name, ec)))
         throw std::runtime_error((dir / name).string() + ": is a folder, where the run writes its file " + name);
     // With the lock held no live run writes here: temporaries are a killed run's leftovers.
     for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
       const std::string name = e.path().filename().string();
-      for (const std::string stem : {"history.csv.tmp.", "events.csv.tmp.", "revolutions.csv.tmp.", "summary.json.tmp."})
+      for (const std::string stem :
+           {"history.csv.tmp.", "events.csv.tmp.", "revolutions.csv.tmp.", "force_bins.csv.tmp.", "summary.json.tmp."})
         if (name.rfind(stem, 0) == 0 && is_temporary_suffix(name.substr(stem.size()))) fs::remove(e.path(), ec);
     }
     // The pictures and animation that `rotbeam plot` and `rotbeam animate` drew of an older run in
@@ -276,6 +297,7 @@ PassFiles::PassFiles(const std::filesystem::path& dir, int n, int history_revolu
     ec.clear();
     fs::remove(dir / "summary.json", ec);  // the folder is not complete until commit()
     if (!ec) fs::remove(dir / "revolutions.csv", ec);  // an older run's, which this run may not write
+    if (!ec) fs::remove(dir / "force_bins.csv", ec);
     if (ec)
       throw std::runtime_error((dir / "summary.json").string() + ": cannot remove the older summary (" + ec.message() + ")");
     open(history_, "history.csv", history_header(n));
@@ -421,8 +443,12 @@ void PassFiles::commit(const PassResult& result, const Config& config, const Sur
   close(history_);
   close(events_);
   if (revolutions_.file) close(revolutions_);
+  const std::string bins = force_bins_csv(result);
+  write_file_atomically(dir_ / "force_bins.csv", bins);
   nlohmann::json j = summary_json(result, config, surface);
-  j["files"] = {{"history.csv", {{"bytes", history_.bytes}}}, {"events.csv", {{"bytes", events_.bytes}}}};
+  j["files"] = {{"history.csv", {{"bytes", history_.bytes}}},
+                {"events.csv", {{"bytes", events_.bytes}}},
+                {"force_bins.csv", {{"bytes", bins.size()}}}};
   if (!revolutions_.final_path.empty()) j["files"]["revolutions.csv"] = {{"bytes", revolutions_.bytes}};
   write_file_atomically(dir_ / "summary.json", j.dump(2) + "\n");
   committed_ = true;
@@ -435,10 +461,12 @@ bool complete_run_folder(const std::filesystem::path& dir, nlohmann::json* summa
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(in);
-    for (const char* name : {"history.csv", "events.csv"}) {
+    j.at("files").at("history.csv");  // a run's summary names at least these two
+    j.at("files").at("events.csv");
+    for (const auto& [name, entry] : j.at("files").items()) {
       std::error_code ec;
       const std::uintmax_t size = fs::file_size(dir / name, ec);
-      if (ec || size != j.at("files").at(name).at("bytes").get<std::uintmax_t>()) return false;
+      if (ec || size != entry.at("bytes").get<std::uintmax_t>()) return false;
     }
   } catch (const std::exception&) {
     return false;

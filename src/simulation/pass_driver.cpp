@@ -77,6 +77,7 @@ void PassDriver::run(const InitialConditions& ic) {
     if (t_star < t_end_) {
       state_.t = t_star;
       flexible_from_t_ = t_star;  // the rigid turn costs nothing: progress counts from here
+      rec_.rigid_turn(t_star);
       rec_.accept(state_.t, state_.q, state_.qd, Phase::free, {}, {}, true);
       impact();
       if (done_) return;
@@ -115,6 +116,7 @@ void PassDriver::free_flight() {
   while (state_.t < t_end_) {
     const StepOutcome o = stepper_.step(state_, stop_time());
     if (o.status == StepStatus::failed) return fail(o.failure->kind, o.failure->t, o.failure->message, Phase::free);
+    rec_.free_rows_within(state_.t, state_.q, stepper_);
     if (o.status == StepStatus::root) {  // the gap closed: a touch
       instant_transitions_ = (state_.t - t_enter < kInstant) ? instant_transitions_ + 1 : 0;
       rec_.accept(state_.t, state_.q, state_.qd, Phase::free, {}, o.integrals, true);

@@ -30,7 +30,10 @@ PassRecorder::PassRecorder(const System& system, const PassOptions& options, con
       ws_(system.beam.make_workspace()),
       tip_(system.beam.modes()),
       generalized_force_(system.beam.modes()),
-      qdd_(system.beam.modes()) {
+      qdd_(system.beam.modes()),
+      iq_(Eigen::VectorXd::Zero(system.beam.modes())),
+      iqd_(Eigen::VectorXd::Zero(system.beam.modes())),
+      bins_(options.bin_deg, system.beam.hub_motion().omega) {
   row_.q.resize(system.beam.modes());
   row_.qd.resize(system.beam.modes());
 }
@@ -131,8 +134,48 @@ void PassRecorder::sample(double t, const Eigen::VectorXd& q, const Eigen::Vecto
     control_.sink->row(row_);
   else
     result_.history.push_back(row_);
+  const double h = options_.near_surface_interval_s;
+  next_near_t_ = h > 0.0 ? h * (std::floor(t / h) + 1.0) : t;
   if (options_.output_interval_s <= 0.0) return;  // every accepted point is sampled
   next_sample_t_ = options_.output_interval_s * (std::floor(t / options_.output_interval_s) + 1.0);
+}
+
+bool PassRecorder::near_surface(double t, const Eigen::VectorXd& q) {
+  if (!(options_.near_surface_gap_m > 0.0)) return false;
+  last_gap_ = gap(system_.beam, system_.surface, t, q);
+  return last_gap_ > -options_.near_surface_gap_m;
+}
+
+void PassRecorder::rigid_turn(double t_to) {
+  iq_.setZero();
+  iqd_.setZero();
+  // Nothing moves but the hub: a row every output.interval_s or every 0.1° of hub angle,
+  // whichever is longer, draws the approach; near the surface, the near-surface interval.
+  const double far = std::max(options_.output_interval_s, 0.1 * M_PI / 180.0 / system_.beam.hub_motion().omega);
+  double tk = last_t_;
+  for (;;) {
+    const double h = near_surface(tk, iq_) && options_.near_surface_interval_s > 0.0
+                         ? std::min(far, options_.near_surface_interval_s)
+                         : far;
+    tk = h * (std::floor(tk / h + 1e-9) + 1.0);  // the next grid time, never tk itself
+    if (!(tk < t_to)) break;
+    sample(tk, iq_, iqd_, Phase::free, ContactLoad{});
+  }
+}
+
+void PassRecorder::free_rows_within(double t, const Eigen::VectorXd& q, Stepper& stepper) {
+  const double h = options_.near_surface_interval_s;
+  if (!(h > 0.0) || !(options_.near_surface_gap_m > 0.0)) return;
+  const double gap_before = last_gap_;
+  if (!near_surface(t, q) && !(gap_before > -options_.near_surface_gap_m)) return;
+  double tk = std::max(next_near_t_, h * (std::floor(last_t_ / h) + 1.0));
+  while (tk < t) {
+    if (tk > last_t_) {
+      if (!stepper.interpolate(tk, iq_, iqd_)) return;
+      sample(tk, iq_, iqd_, Phase::free, ContactLoad{});
+    }
+    tk = std::max(next_near_t_, tk + 0.5 * h);
+  }
 }
 
 void section_state(const BeamModel& beam, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Eigen::VectorXd& z) {
@@ -209,6 +252,7 @@ void PassRecorder::open_revolution(double t, const Eigen::VectorXd& q, const Eig
   mark_.history_rows = result_.history.size();
   mark_.events = result_.events.size();
   if (!control_.sink) kept_marks_.push_back(mark_);
+  bins_.clear();
   rev_first_impact_deg_ = rev_last_separation_deg_ = NAN;
   rev_peak_force_ = 0.0;
   rev_max_ratio_ = system_.beam.tip_deflection(q) / system_.beam.beam_length();
@@ -216,6 +260,10 @@ void PassRecorder::open_revolution(double t, const Eigen::VectorXd& q, const Eig
 
 bool PassRecorder::close_revolution(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, bool complete) {
   const PassSummary& s = result_.summary;
+  if (complete) {
+    complete_bins_ = bins_.table();
+    complete_peaks_ = bins_.peaks();
+  }
   const EnergyTerms e = system_.beam.energy(q, qd, *ws_);
   const double omega = system_.beam.hub_motion().omega;
   RevolutionRecord r;
@@ -308,6 +356,12 @@ void PassRecorder::accept(double t, const Eigen::VectorXd& q, const Eigen::Vecto
   PassSummary& s = result_.summary;
   s.damping_work_j += in.damping_work;
   if (phase != Phase::free) {
+    // Friction on the tip is −μ F_n s_t along t (either force convention), so the surface gets
+    // +μ s_t ∫F_n dt along t; s_t is constant over a step (slip stops end steps).
+    if (load.slip != 0.0) contact_slip_ = load.slip;
+    const double omega = system_.beam.hub_motion().omega;
+    bins_.add_spread(relative_angle_deg(last_t_), omega * (t - last_t_) * 180.0 / M_PI, in.normal_impulse,
+                     system_.law.friction.mu * contact_slip_ * in.normal_impulse);
     s.contact_time_s += t - last_t_;
     normal_time_integral_ += in.normal_impulse;
     s.friction_work_j += in.friction_work;
@@ -317,7 +371,8 @@ void PassRecorder::accept(double t, const Eigen::VectorXd& q, const Eigen::Vecto
   }
   last_t_ = t;
   track(t, q);
-  if (force_sample || t >= next_sample_t_) sample(t, q, qd, phase, load);
+  const bool near = near_surface(t, q);
+  if (force_sample || t >= next_sample_t_ || (near && t >= next_near_t_)) sample(t, q, qd, phase, load);
 }
 
 void PassRecorder::impact(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd_before,
@@ -334,6 +389,7 @@ void PassRecorder::impact(double t, const Eigen::VectorXd& q, const Eigen::Vecto
     rev_last_separation_deg_ = relative_angle_deg(t);
   }
   s.normal_impulse_n_s += std::abs(r.impulse);
+  bins_.add_impulse(relative_angle_deg(t), std::abs(r.impulse), -r.tangential_impulse);  // on the surface
   impact_jumps_ += r.delta_t2;
   // The hub's work during the impact: ω times its angular impulse, ΔH_z less the moment of the contact
   // impulse (q is unchanged, so ΔH_z = Δ(p(q)·q̇)).
@@ -369,6 +425,7 @@ void PassRecorder::contact_start(double t, const Eigen::VectorXd& q, const Eigen
   episode_theta0_ = system_.beam.theta(t);
   episode_y0_ = tip_y(t, q);
   event(EventKind::contact_start, t, q, detail);
+  contact_slip_ = load.slip;
   // The force right after the plastic impact that opens an episode is often the episode's largest.
   note_force(load.normal_force);
   sample(t, q, qd, Phase::contact, load);
@@ -437,7 +494,6 @@ void PassRecorder::finish(double t, const Eigen::VectorXd& q, const Eigen::Vecto
   s.rhs_evaluations = statistics.rhs_evaluations;
   s.corrector_iterations = statistics.corrector_iterations;
   s.corrector_iterations_max = statistics.corrector_iterations_max;
-  s.normal_impulse_n_s += normal_time_integral_;
   s.mean_normal_force_n = s.contact_time_s > 0 ? normal_time_integral_ / s.contact_time_s : 0.0;
   const EnergyTerms e = system_.beam.energy(q, qd, *ws_);
   energy_scale_ = std::max({energy_scale_, std::abs(e.jacobi), e.t2});
@@ -484,6 +540,15 @@ void PassRecorder::finish(double t, const Eigen::VectorXd& q, const Eigen::Vecto
     // One pass: the means over the pass.
     s.mean_hub_torque_n_m = s.hub_work_j / (omega * (t - t_start_));
     s.mean_hub_power_w = s.hub_work_j / (t - t_start_);
+  }
+  // After the last revolution's record, which adds the contact's part itself.
+  s.normal_impulse_n_s += normal_time_integral_;
+  if (options_.revolutions > 0 && have_complete_) {
+    result_.force_bins = complete_bins_;
+    s.binned_force = complete_peaks_;
+  } else {
+    result_.force_bins = bins_.table();
+    s.binned_force = bins_.peaks();
   }
   event(EventKind::end, t, q, "");
 }

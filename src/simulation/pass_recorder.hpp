@@ -4,6 +4,7 @@
 // length of the run but the list of contact intervals.
 #pragma once
 
+#include "rotbeam/force_bins.hpp"
 #include "rotbeam/impact.hpp"
 #include "rotbeam/pass.hpp"
 
@@ -17,6 +18,14 @@ public:
 
   /// The start of the pass.
   void start(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd);
+  /// A rigid start's turn (q = q̇ = 0) from the start to t_to, where the tip reaches the surface:
+  /// rows before t_to every output.interval_s or every 0.1° of hub angle, whichever is longer
+  /// (near the surface, every output.near_surface_interval_s).
+  void rigid_turn(double t_to);
+  /// Free flight reached t (state q) over the step `stepper` just took: while the tip is near the
+  /// surface (output.near_surface_gap_m), rows strictly inside the step at
+  /// output.near_surface_interval_s from the stepper's dense output. Call before accept(t, …).
+  void free_rows_within(double t, const Eigen::VectorXd& q, Stepper& stepper);
   /// An accepted point reached over a step from the previous accepted point, with the contact
   /// load at the new point and the step's contact integrals (from the stepper).
   void accept(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Phase phase, const ContactLoad& load,
@@ -68,6 +77,8 @@ private:
   void drop_old_revolutions();
   double relative_angle_deg(double t) const;
   void note_force(double normal_force);
+  // True when the tip at (t, q) is within output.near_surface_gap_m of the surface (remembers the gap).
+  bool near_surface(double t, const Eigen::VectorXd& q);
   void sample(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Phase phase, const ContactLoad& load);
   void track(double t, const Eigen::VectorXd& q);
   double hub_torque(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const ContactLoad& load);
@@ -83,6 +94,13 @@ private:
   HistoryRow row_;
   Eigen::VectorXd generalized_force_, qdd_;
   double next_sample_t_ = 0;
+  double next_near_t_ = 0;              // the next row time on the near-surface grid [s]
+  double last_gap_ = -INFINITY;         // the gap at the last accepted point [m]
+  Eigen::VectorXd iq_, iqd_;            // interpolated or rigid-turn states (scratch)
+  ForceBins bins_;                      // of the pass, or of the revolution under way
+  std::vector<ForceBin> complete_bins_;  // the last complete revolution's (runs over many)
+  BinnedForcePeaks complete_peaks_;
+  double contact_slip_ = 0;             // the slip direction of the episode's latest contact step
   double last_t_ = 0;
   bool in_episode_ = false;
   double episode_t0_ = 0, episode_theta0_ = 0, episode_y0_ = 0;

@@ -60,21 +60,29 @@ def test_the_drawn_tip_is_the_recorded_tip(runs, name):
     assert np.allclose(across_big, 3.0 * across, rtol=0, atol=1e-12)
 
 
-def test_the_rigid_approach_is_filled_in_exactly(runs):
-    # A rigid start records θ0 and then the first impact; the animation adds the rigid turn between
-    # (q = 0): its rows' tips lie on the circle of radius r_h + L at their angle.
+def test_the_rigid_approach_is_drawn_exactly(runs):
+    # A rigid start's history records the rigid turn (q = 0) from θ0 to the first impact; a history
+    # written before it did (θ0, then the first impact) gets the turn filled in. Either way the
+    # drawn tips lie on the circle of radius r_h + L at their angle, in order.
     folder = runs["base"]
     summary = json.loads((folder / "summary.json").read_text())
     history = read_csv(folder / "history.csv")
-    filled = anim.with_rigid_approach(history, summary)
-    added = len(filled["t_s"]) - len(history["t_s"])
+    first_impact = summary["first_impact_deg"]
+    recorded = np.flatnonzero(history["theta_deg"] < first_impact - 1e-9)
+    assert len(recorded) > 500  # −90° … −8.1° every 0.1°, and finer near the surface
+    assert len(anim.with_rigid_approach(history, summary)["t_s"]) == len(history["t_s"])
+    older = {key: np.concatenate([values[:1], values[recorded[-1] + 1:]]) for key, values in history.items()}
+    filled = anim.with_rigid_approach(older, summary)
+    added = len(filled["t_s"]) - len(older["t_s"])
     assert added > 1000  # −90° … −8.1° every 0.05°
-    assert np.all(np.diff(filled["theta_deg"][:added + 2]) > 0)  # θ0, the turn, the first impact
-    assert np.all(np.diff(filled["t_s"][:added + 2]) > 0)
-    rows = np.arange(1, 1 + added)
-    shape = anim.filament_frames(folder, rows, history=filled, summary=summary)
-    assert np.max(np.abs(shape["x"][:, -1] - filled["x_tip_m"][rows])) < 1e-12
-    assert np.max(np.abs(shape["y"][:, -1] - filled["y_tip_m"][rows])) < 1e-12
+    for h, rows in ((history, recorded[1:]), (filled, np.arange(1, 1 + added))):
+        assert np.all(np.diff(h["theta_deg"][: rows[-1] + 2]) > 0)  # θ0, the turn, the first impact
+        assert np.all(np.diff(h["t_s"][: rows[-1] + 2]) > 0)
+        shape = anim.filament_frames(folder, rows, history=h, summary=summary)
+        reach = summary["config"]["hub"]["radius_m"] + summary["config"]["beam"]["length_m"]
+        theta = np.radians(h["theta_deg"][rows])
+        assert np.max(np.abs(shape["x"][:, -1] - reach * np.cos(theta))) < 1e-12
+        assert np.max(np.abs(shape["y"][:, -1] - reach * np.sin(theta))) < 1e-12
     # Flexible starts are left as recorded.
     flexible = runs["flexible"]
     fs = json.loads((flexible / "summary.json").read_text())

@@ -56,6 +56,27 @@ def test_run_equals_the_cli_to_the_last_digit(tmp_path):
             assert mine["restitution"] == float(theirs["restitution"])
 
 
+def test_force_bins_equal_the_cli(tmp_path):
+    # The force on the surface in hub-angle bins: the same table as force_bins.csv, to the last
+    # digit, summing to the pass's normal impulse; for an impacts-only pass too.
+    for overrides in ({"output.interval_s": 1e-4}, {"hub.speed_rpm": 3000, "output.bin_deg": 0.25}):
+        result = rotbeam.run(overrides=overrides)
+        folder = tmp_path / str(len(overrides))
+        sets = [a for k, v in overrides.items() for a in ("--set", f"{k}={v}")]
+        code, _, err = cli("run", *sets, "-o", str(folder), "--quiet")
+        assert code == 0, err
+        with open(folder / "force_bins.csv", newline="") as f:
+            rows = list(csv.DictReader(f))
+        assert rows and len(rows) == len(result.force_bins["theta_from_deg"])
+        for name, column in result.force_bins.items():
+            assert np.array_equal(column, np.array([float(r[name]) for r in rows])), name
+        total = result.force_bins["normal_impulse_n_s"].sum()
+        assert math.isclose(total, result.summary["normal_impulse_n_s"], rel_tol=1e-12)
+        assert result.force_bins["impacts"].sum() == result.summary["impacts"]
+        binned = result.summary["binned_force"]
+        assert binned["peak_normal_force_n"] == result.force_bins["mean_normal_force_n"].max() > 0
+
+
 def test_revolutions_and_the_steady_state_equal_the_cli(tmp_path):
     overrides = {"beam.modes": 3, "beam.damping_ratio": 0.05, "simulation.until_steady": True,
                  "simulation.steady_method": "shooting", "simulation.revolutions": 60, "output.interval_s": 1e-4}

@@ -1,0 +1,61 @@
+// The force the tip puts on the surface, binned over the hub angle (SPEC §7, output.bin_deg): the
+// momentum each bin receives — the impulses of the impacts in it and ∫F dt of sustained contact
+// over it — and that momentum divided by the bin's duration, the mean force over the bin. A pass
+// made of impacts alone has no contact force at any instant, but its binned force is what the
+// surface feels on average; the brush sums these over its filaments.
+#pragma once
+
+#include <vector>
+
+namespace rotbeam {
+
+/// One bin of hub angle [from_deg, to_deg) and what the surface received in it. Normal is along
+/// the surface's normal into the surface (≥ 0); tangential along the surface's tangent t (+Y on
+/// the thesis's plane), the force on the surface, so the opposite of friction on the tip.
+struct ForceBin {
+  double from_deg = 0, to_deg = 0;           // hub angle relative to the surface's deepest point [°]
+  double normal_impulse_n_s = 0;             // momentum into the surface [N s]
+  double tangential_impulse_n_s = 0;         // momentum along the tangent [N s]
+  double mean_normal_force_n = 0;            // normal_impulse / the bin's duration [N]
+  double mean_tangential_force_n = 0;        // tangential_impulse / the bin's duration [N]
+  int impacts = 0;                           // impacts in the bin
+};
+
+/// The peaks of the binned force (summary.json's binned_force).
+struct BinnedForcePeaks {
+  double bin_deg = 0;                  // [°]
+  double peak_normal_force_n = 0;      // the largest mean normal force of a bin [N]
+  double peak_tangential_force_n = 0;  // the largest |mean tangential force| of a bin [N]
+  double peak_normal_at_deg = 0;       // the centre of the bin of the normal peak [°] (NaN: no momentum)
+};
+
+/// Bins of width bin_deg over the relative hub angle (−180°, 180°] of a hub turning at ω [rad/s].
+/// Storage is fixed at construction (360°/bin_deg bins); adding allocates nothing.
+class ForceBins {
+public:
+  ForceBins(double bin_deg, double omega);
+
+  void clear();
+  /// An impulse (an impact) at relative angle `angle_deg`: normal ≥ 0 and tangential [N s].
+  void add_impulse(double angle_deg, double normal_n_s, double tangential_n_s);
+  /// Momentum delivered uniformly in angle from `from_deg` over `span_deg` ≥ 0 (a contact step; the
+  /// span may cross ±180°) [N s].
+  void add_spread(double from_deg, double span_deg, double normal_n_s, double tangential_n_s);
+
+  double bin_deg() const { return bin_deg_; }
+  /// The bins from the first to the last that received momentum (empty when none did).
+  std::vector<ForceBin> table() const;
+  BinnedForcePeaks peaks() const;
+
+private:
+  int index(double angle_deg) const;
+  double bin_duration_s() const;
+
+  double bin_deg_, omega_;
+  int count_;
+  std::vector<double> normal_, tangential_;
+  std::vector<int> impacts_;
+  std::vector<char> touched_;
+};
+
+}  // namespace rotbeam

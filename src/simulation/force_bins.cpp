@@ -1,0 +1,115 @@
+#include "rotbeam/force_bins.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace rotbeam {
+
+ForceBins::ForceBins(double bin_deg, double omega) : bin_deg_(bin_deg), omega_(omega) {
+  if (!(bin_deg > 0.0) || !(omega > 0.0)) throw std::invalid_argument("ForceBins: bin_deg and ω must be positive");
+  count_ = static_cast<int>(std::ceil(360.0 / bin_deg - 1e-9));
+  normal_.assign(count_, 0.0);
+  tangential_.assign(count_, 0.0);
+  impacts_.assign(count_, 0);
+  touched_.assign(count_, 0);
+}
+
+void ForceBins::clear() {
+  std::fill(normal_.begin(), normal_.end(), 0.0);
+  std::fill(tangential_.begin(), tangential_.end(), 0.0);
+  std::fill(impacts_.begin(), impacts_.end(), 0);
+  std::fill(touched_.begin(), touched_.end(), 0);
+}
+
+int ForceBins::index(double angle_deg) const {
+  // Bin k covers [−180° + k·w, −180° + (k + 1)·w); angles are taken mod 360°.
+  double a = std::fmod(angle_deg + 180.0, 360.0);
+  if (a < 0.0) a += 360.0;
+  return std::min(static_cast<int>(a / bin_deg_), count_ - 1);
+}
+
+double ForceBins::bin_duration_s() const { return bin_deg_ * M_PI / 180.0 / omega_; }
+
+void ForceBins::add_impulse(double angle_deg, double normal_n_s, double tangential_n_s) {
+  const int k = index(angle_deg);
+  normal_[k] += normal_n_s;
+  tangential_[k] += tangential_n_s;
+  ++impacts_[k];
+  touched_[k] = 1;
+}
+
+void ForceBins::add_spread(double from_deg, double span_deg, double normal_n_s, double tangential_n_s) {
+  if (!(span_deg > 0.0)) {
+    const int k = index(from_deg);
+    normal_[k] += normal_n_s;
+    tangential_[k] += tangential_n_s;
+    touched_[k] = 1;
+    return;
+  }
+  // Walk the bins the span crosses, giving each its share of the angle (the last bin what is left,
+  // so that the momentum is kept to the last bit).
+  double a = from_deg, normal_left = normal_n_s, tangential_left = tangential_n_s;
+  const double end = from_deg + span_deg;
+  while (a < end) {
+    double wrapped = std::fmod(a + 180.0, 360.0);  // a's place in [0°, 360°) from −180°
+    if (wrapped < 0.0) wrapped += 360.0;
+    const int k = index(a);
+    const double upper = k == count_ - 1 ? 360.0 : (k + 1) * bin_deg_;  // the bin's end, same origin
+    const double b = std::min(end, std::max(a + (upper - wrapped), std::nextafter(a, INFINITY)));
+    const double share = (b - a) / span_deg;
+    const double normal = b < end ? share * normal_n_s : normal_left;
+    const double tangential = b < end ? share * tangential_n_s : tangential_left;
+    normal_[k] += normal;
+    tangential_[k] += tangential;
+    normal_left -= normal;
+    tangential_left -= tangential;
+    touched_[k] = 1;
+    a = b;
+  }
+}
+
+std::vector<ForceBin> ForceBins::table() const {
+  std::vector<ForceBin> out;
+  int first = -1, last = -1;
+  for (int k = 0; k < count_; ++k)
+    if (touched_[k]) {
+      if (first < 0) first = k;
+      last = k;
+    }
+  if (first < 0) return out;
+  const double duration = bin_duration_s();
+  out.reserve(last - first + 1);
+  for (int k = first; k <= last; ++k) {
+    ForceBin b;
+    b.from_deg = -180.0 + k * bin_deg_;
+    b.to_deg = std::min(180.0, b.from_deg + bin_deg_);
+    b.normal_impulse_n_s = normal_[k];
+    b.tangential_impulse_n_s = tangential_[k];
+    b.mean_normal_force_n = normal_[k] / duration;
+    b.mean_tangential_force_n = tangential_[k] / duration;
+    b.impacts = impacts_[k];
+    out.push_back(b);
+  }
+  return out;
+}
+
+BinnedForcePeaks ForceBins::peaks() const {
+  BinnedForcePeaks p;
+  p.bin_deg = bin_deg_;
+  p.peak_normal_at_deg = NAN;
+  const double duration = bin_duration_s();
+  double best = -1.0;
+  for (int k = 0; k < count_; ++k) {
+    if (!touched_[k]) continue;
+    if (normal_[k] > best) {
+      best = normal_[k];
+      p.peak_normal_at_deg = -180.0 + (k + 0.5) * bin_deg_;
+    }
+    p.peak_tangential_force_n = std::max(p.peak_tangential_force_n, std::abs(tangential_[k]) / duration);
+  }
+  if (best >= 0.0) p.peak_normal_force_n = best / duration;
+  return p;
+}
+
+}  // namespace rotbeam
