@@ -1,6 +1,8 @@
 // `rotbeam reproduce -o DIR`: the thesis's Table 5-3 and Figures 4–13 regenerated with the cases
 // their captions state (Table 5-2 values), twice: with the thesis's scheme and force convention,
 // and with the default physical model; then DIR/report.md (drawn by Python's rotbeam.reproduce).
+// By default each run keeps summary.json, events.csv and the history rows the figures draw
+// (ThinnedRows below); --keep-history keeps every row.
 #include "commands.hpp"
 #include "common.hpp"
 #include "python_bridge.hpp"
@@ -12,13 +14,18 @@
 #include "rotbeam/job_runner.hpp"
 #include "rotbeam/pass_output.hpp"
 
-#include <optional>
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <mutex>
+#include <optional>
+#include <system_error>
+#include <unistd.h>
 
 namespace rotbeam::cli {
 
@@ -95,13 +102,17 @@ std::vector<Figure> figures() {
   add("figure_11", "Normal force profiles for 8 % depth, 3000 rpm and μ = 0.1, 0.3, 0.5",
       "The same tendencies as Figures 8–10 (smaller friction, larger forces).",
       {curve("μ = 0.1", 3000, 8, 0.1), curve("μ = 0.3", 3000, 8, 0.3), curve("μ = 0.5", 3000, 8, 0.5)});
-  add("figure_12", "Normal force profiles for 2 % depth, 550 rpm, μ = 0.4, flexible start q̇_k(0) = 0.1 for k = 1…5",
+  add("figure_12",
+      "Normal force profiles for 2 % depth, 550 rpm, μ = 0.4, flexible start q̇_k(0) = 0.1 m/s (the thesis's "
+      "0.1 s⁻¹) for k = 1…5",
       "With the disturbance in the higher modes (4, 5) the profile is very similar to the rigid start's.",
-      {curve("rigid start", 550, 2, 0.4), curve("q̇_1 = 0.1", 550, 2, 0.4, 1), curve("q̇_2 = 0.1", 550, 2, 0.4, 2),
-       curve("q̇_3 = 0.1", 550, 2, 0.4, 3), curve("q̇_4 = 0.1", 550, 2, 0.4, 4), curve("q̇_5 = 0.1", 550, 2, 0.4, 5)});
-  add("figure_13", "Tip path for 2 % depth, 550 rpm, μ = 0.4 (−X against Y) with close-ups",
-      "First impact near (Y, −X) = (−0.0179, −0.1257) m; contact with intervals of free motion; "
-      "a bounce back after the first impact.",
+      {curve("rigid start", 550, 2, 0.4), curve("q̇_1(0) = 0.1 m/s", 550, 2, 0.4, 1), curve("q̇_2(0) = 0.1 m/s", 550, 2, 0.4, 2),
+       curve("q̇_3(0) = 0.1 m/s", 550, 2, 0.4, 3), curve("q̇_4(0) = 0.1 m/s", 550, 2, 0.4, 4), curve("q̇_5(0) = 0.1 m/s", 550, 2, 0.4, 5)});
+  add("figure_13",
+      "Tip path for 2 % depth, 550 rpm, μ = 0.4 (−X against Y): (a) the pass, (b) the disturbances, (c) the "
+      "contact region, (d) the bounce back",
+      "First impact near (Y, −X) = (−0.0179, −0.1257) m; contact with intervals of free motion; two disturbances "
+      "of the tip path in the free motion after contact; a bounce back after the first impact.",
       {curve("path", 550, 2, 0.4)});
   return f;
 }
@@ -109,7 +120,78 @@ std::vector<Figure> figures() {
 struct ReproduceOptions {
   std::string output_dir = "reproduction";
   int jobs = 0;
+  bool keep_history = false;
+  bool quiet = false;
 };
+
+// The history rows the figures draw, passed on to the run's PassFiles (the rest are dropped):
+// every row in sustained contact with the free rows just before and after it (so each episode's
+// ends are in the file and no two episodes join), the first and the last row; with `whole_path`
+// (Figure 13's tip path) also the free flight, one row per kWholePathInterval, and every row in the
+// kBounceWindow after the first impact (the bounce back). Events are all passed on.
+constexpr double kWholePathInterval = 1e-5;  // [s]
+constexpr double kBounceWindow = 2e-3;       // [s]
+constexpr double kAnnounceBytes = 100e6;     // a reproduction writing more is announced first
+
+class ThinnedRows final : public PassSink {
+public:
+  ThinnedRows(PassFiles& files, bool whole_path) : files_(files), whole_path_(whole_path) {}
+  void row(const HistoryRow& r) override {
+    const bool pressed = r.phase != Phase::free;
+    bool keep = !have_previous_ || pressed || previous_pressed_;
+    if (whole_path_)
+      keep = keep || r.t - last_kept_t_ >= kWholePathInterval * (1 - 1e-9) ||
+             (std::isfinite(first_impact_t_) && r.t <= first_impact_t_ + kBounceWindow);
+    if (keep && pressed && have_previous_ && !previous_kept_) files_.row(previous_);
+    if (keep) {
+      files_.row(r);
+      last_kept_t_ = r.t;
+    }
+    previous_ = r;
+    have_previous_ = true;
+    previous_kept_ = keep;
+    previous_pressed_ = pressed;
+  }
+  void event(const PassEvent& e) override {
+    if (e.kind == EventKind::impact && !std::isfinite(first_impact_t_)) first_impact_t_ = e.t;
+    files_.event(e);
+  }
+  void revolution(const RevolutionRecord& record) override { files_.revolution(record); }
+  /// Passes on the last row (before PassFiles::commit).
+  void finish() {
+    if (have_previous_ && !previous_kept_) files_.row(previous_);
+    previous_kept_ = true;
+  }
+
+private:
+  PassFiles& files_;
+  bool whole_path_;
+  HistoryRow previous_;
+  bool have_previous_ = false, previous_kept_ = false, previous_pressed_ = false;
+  double last_kept_t_ = -std::numeric_limits<double>::infinity();
+  double first_impact_t_ = std::numeric_limits<double>::quiet_NaN();
+};
+
+std::string duration(double s) {
+  char buf[32];
+  if (s < 90) std::snprintf(buf, sizeof buf, "%.0f s", s);
+  else std::snprintf(buf, sizeof buf, "%.0f min %02.0f s", std::floor(s / 60), std::fmod(s, 60));
+  return buf;
+}
+
+// Bytes of the files under `dir` (0 for what cannot be read).
+double folder_bytes(const fs::path& dir) {
+  double total = 0;
+  std::error_code ec;
+  for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    std::error_code size_ec;
+    if (it->is_regular_file(size_ec)) {
+      const auto size = it->file_size(size_ec);
+      if (!size_ec) total += static_cast<double>(size);
+    }
+  }
+  return total;
+}
 
 int run_reproduce(const ReproduceOptions& o) {
   if (o.jobs < 0) throw ConfigError("--jobs " + std::to_string(o.jobs) + ": must be >= 0");
@@ -137,46 +219,83 @@ int run_reproduce(const ReproduceOptions& o) {
   }
   const std::vector<std::pair<std::string, std::vector<std::string>>> models = {
       {"thesis", {"simulation.scheme=thesis", "compat.thesis_forces=true"}}, {"physical", {}}};
+  const std::string whole_path_case = figs.back().curves.front().second;  // Figure 13's tip path
   struct Job {
     fs::path folder;
     Config config;
+    bool whole_path = false;
   };
   std::vector<Job> jobs;
   for (const auto& [model, model_overrides] : models)
     for (const auto& [id, ov] : used) {
       std::vector<std::string> all = model_overrides;
       all.insert(all.end(), ov.begin(), ov.end());
-      jobs.push_back({dir / model / id, load_config(std::nullopt, all)});
+      jobs.push_back({dir / model / id, load_config(std::nullopt, all), id == whole_path_case});
     }
+  // Every row of every history: announced when large, refused when it cannot fit on the disk.
+  if (o.keep_history) {
+    double bytes = 0, at_least = 0;
+    for (const Job& j : jobs) {
+      const HistoryEstimate e = estimate_history(build_case(j.config));
+      bytes += e.csv_bytes;
+      at_least += e.min_csv_bytes;
+    }
+    const double available = available_disk_bytes(dir);
+    if (available > 0 && at_least > available)
+      throw ConfigError("--keep-history: the " + std::to_string(jobs.size()) + " histories take at least " +
+                        size_text(at_least) + ", more than the " + size_text(available) + " free in " + dir.string());
+    if (bytes > kAnnounceBytes && !o.quiet)
+      std::cerr << "rotbeam: note: --keep-history: the " << jobs.size() << " histories will take about "
+                << size_text(bytes) << " in " << dir.string() << std::endl;
+  }
   install_interrupt_handlers();
+  const bool terminal = !o.quiet && isatty(STDERR_FILENO);
   std::mutex mutex;
   std::vector<std::string> failures;
-  std::vector<std::string> outcome(jobs.size());
-  JobRunnerOptions runner;
-  runner.threads = o.jobs;
-  runner.stop = &interrupt_token();
-  runner.on_job_finished = [&](const JobProgress& p) {
-    const fs::path& folder = jobs[p.job].folder;
-    std::fprintf(stderr, "%3zu/%zu %s%s\n", p.finished, p.total, (folder.parent_path().filename() / folder.filename()).c_str(),
-                 outcome[p.job].c_str());
-  };
-  run_jobs(
-      jobs.size(),
-      [&](std::size_t i) {
-        const rotbeam::Case c = build_case(jobs[i].config);
-        PassFiles files(jobs[i].folder, jobs[i].config.beam.modes, jobs[i].config.simulation.history_revolutions);
-        const PassResult r = run_case(c, {&files, &interrupt_token(), {}});
-        files.commit(r, jobs[i].config, *c.surface);
-        if (!r.failure) return;
-        std::lock_guard<std::mutex> lock(mutex);
-        outcome[i] = std::string(" (") + failure_name(r.failure->kind) + ")";
-        failures.push_back(jobs[i].folder.string() + ": " + failure_name(r.failure->kind) + ": " + r.failure->message);
-      },
-      runner);
+  auto line = std::make_unique<LiveLine>(terminal);  // cleared before anything else is printed
+  {
+    const std::size_t total = jobs.size();
+    const int threads = std::min<int>(default_threads(o.jobs), static_cast<int>(total));
+    line->set([total, threads](double e) {
+      return "reproduce: " + std::to_string(total) + " runs on " + std::to_string(threads) + " threads, " +
+             duration(e) + " elapsed";
+    });
+    JobRunnerOptions runner;
+    runner.threads = o.jobs;
+    runner.stop = &interrupt_token();
+    runner.on_job_finished = [&](const JobProgress& p) {
+      const fs::path& folder = jobs[p.job].folder;
+      const std::string name = (folder.parent_path().filename() / folder.filename()).string();
+      const std::size_t finished = p.finished;
+      const double at = p.elapsed_s, eta = p.eta_s;
+      line->set([=](double e) {
+        return "reproduce: run " + std::to_string(finished) + "/" + std::to_string(total) + " " + name + ", " +
+               duration(e) + " elapsed, ETA " + duration(std::max(0.0, eta - (e - at)));
+      });
+    };
+    run_jobs(
+        jobs.size(),
+        [&](std::size_t i) {
+          const rotbeam::Case c = build_case(jobs[i].config);
+          PassFiles files(jobs[i].folder, jobs[i].config.beam.modes, jobs[i].config.simulation.history_revolutions);
+          ThinnedRows thinned(files, jobs[i].whole_path);
+          PassSink* sink = o.keep_history ? static_cast<PassSink*>(&files) : &thinned;
+          const PassResult r = run_case(c, {sink, &interrupt_token(), {}});
+          thinned.finish();
+          files.commit(r, jobs[i].config, *c.surface);
+          if (!r.failure) return;
+          std::lock_guard<std::mutex> lock(mutex);
+          failures.push_back(jobs[i].folder.string() + ": " + failure_name(r.failure->kind) + ": " + r.failure->message);
+        },
+        runner);
+  }
   if (interrupt_token().stop_requested()) {
+    line.reset();
     print_error("reproduction interrupted; run it again");
     return kInterrupted;
   }
+  std::sort(failures.begin(), failures.end());
+  line->set([](double e) { return "reproduce: Table 5-3, " + duration(e) + " elapsed"; });
 
   // Table 5-3 (first impacts; the model choice does not affect them).
   nlohmann::json table = nlohmann::json::array();
@@ -205,8 +324,28 @@ int run_reproduce(const ReproduceOptions& o) {
   }
   manifest["table_5_3"] = table;
   manifest["failures"] = failures;
+  manifest["history"] =
+      o.keep_history
+          ? nlohmann::json{{"kept", "all"}, {"description", "every row (output.interval_s = 2e-6 s)"}}
+          : nlohmann::json{{"kept", "thinned"},
+                           {"description",
+                            "the rows the figures draw: every row in sustained contact with the free rows just before "
+                            "and after it, the first and the last row; for Figure 13's case also the free flight, one "
+                            "row per 1e-5 s, and every row in the 2e-3 s after the first impact (--keep-history keeps "
+                            "every row, output.interval_s = 2e-6 s)"},
+                           {"whole_path_case", whole_path_case}};
   write_file_atomically(dir / "manifest.json", manifest.dump(2) + "\n");
-  return run_python_plots({"--reproduce", o.output_dir});
+  line.reset();
+  for (const std::string& f : failures) std::cerr << "rotbeam: note: a run stopped on a diagnosed failure: " << f << "\n";
+  std::vector<std::string> args = {o.output_dir};
+  if (terminal) args.push_back("--progress");
+  const int code = run_python_module("rotbeam.reproduce", args);
+  if (code == 0)
+    std::cout << "the runs' files take " << size_text(folder_bytes(dir / "thesis") + folder_bytes(dir / "physical"))
+              << " under " << (dir / "thesis").string() << " and " << (dir / "physical").string()
+              << (o.keep_history ? " (every history row)" : " (histories thinned to the rows the figures draw; --keep-history keeps every row)")
+              << "\n";
+  return code;
 }
 
 }  // namespace
@@ -217,6 +356,9 @@ Command add_reproduce_command(CLI::App& app) {
       "reproduce", "Regenerate the thesis's Table 5-3 and Figures 4-13 (thesis model and physical model) with a report");
   sub->add_option("-o,--output", opts->output_dir, "Output folder (default: reproduction)");
   sub->add_option("--jobs", opts->jobs, "Threads (default: all cores)");
+  sub->add_flag("--keep-history", opts->keep_history,
+                "Keep every history row of every run (about 290 MB; by default only the rows the figures draw)");
+  sub->add_flag("--quiet", opts->quiet, "No progress line on stderr (shown otherwise on a terminal)");
   return [opts] { return run_reproduce(*opts); };
 }
 
