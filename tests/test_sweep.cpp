@@ -86,6 +86,14 @@ TEST(Sweep, RunsResumesAndIsolatesFailures) {
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5);
   EXPECT_EQ(csv.rfind("case,folder,hub.speed_rpm,surface.friction,status,impacts,", 0), 0u);
   EXPECT_NE(csv.find(",3000,0.4,done,6,"), std::string::npos) << csv;
+  // The binned peak, nested in summary.json, has its column: the impacts-only case's is its
+  // largest bin (67.7 N at 3000 rpm), where its sustained-contact peak is 0.
+  char binned[64];
+  std::snprintf(binned, sizeof binned, ",%.17g,",
+                first.results[3].summary["binned_force"]["peak_normal_force_n"].get<double>());
+  EXPECT_GT(first.results[3].summary["binned_force"]["peak_normal_force_n"].get<double>(), 10.0);
+  EXPECT_NE(csv.find("normal_impulse_n_s,binned_peak_normal_force_n,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(binned), std::string::npos) << csv;
 
   callbacks = 0;
   const SweepReport second = run_sweep(axes, options);

@@ -19,6 +19,7 @@ struct SweepCommandOptions {
   std::vector<std::string> vary;
   std::string output_dir;
   int jobs = 0;
+  bool quiet = false;
 };
 
 std::string duration(double s) {
@@ -38,10 +39,11 @@ int run_sweep_command(const SweepCommandOptions& o) {
   options.base_overrides = o.case_options.overrides;
   options.dir = o.output_dir;
   options.jobs = o.jobs;
-  const bool terminal = isatty(STDERR_FILENO);
+  const bool terminal = !o.quiet && isatty(STDERR_FILENO), quiet = o.quiet;
   auto line = std::make_unique<LiveLine>(terminal);
   line->set([](double e) { return "cases under way, " + duration(e) + " elapsed"; });
-  options.on_case_finished = [terminal, &line](const SweepProgress& p) {
+  options.on_case_finished = [terminal, quiet, &line](const SweepProgress& p) {
+    if (quiet) return;
     if (terminal) {
       // Redrawn every second: the clock moves and the ETA counts down between finished cases.
       const int width = 30, filled = p.total ? width * p.finished / p.total : width;
@@ -98,6 +100,8 @@ Command add_sweep_command(CLI::App& app) {
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   sub->add_option("-o,--output", opts->output_dir, "Output folder (created if needed)")->required();
   sub->add_option("--jobs", opts->jobs, "Threads (default: all cores)");
+  sub->add_flag("--quiet", opts->quiet,
+                "No progress on stderr (otherwise a redrawn line on a terminal, a line per finished case elsewhere)");
   return [opts] { return run_sweep_command(*opts); };
 }
 

@@ -48,10 +48,26 @@ std::string number_literal(double v) {
   return s;
 }
 
-const char* kMetrics[] = {"impacts", "contact_episodes", "first_impact_deg", "last_separation_deg",
-                          "contact_time_s", "peak_normal_force_n", "mean_normal_force_n", "normal_impulse_n_s",
-                          "friction_work_j", "max_tip_deflection_ratio", "energy_audit_residual", "steps",
-                          "rhs_evaluations", "wall_time_s"};
+// sweep.csv's metric columns and where each sits in summary.json.
+struct Metric {
+  const char* column;
+  const char* pointer;
+};
+const Metric kMetrics[] = {{"impacts", "/impacts"},
+                           {"contact_episodes", "/contact_episodes"},
+                           {"first_impact_deg", "/first_impact_deg"},
+                           {"last_separation_deg", "/last_separation_deg"},
+                           {"contact_time_s", "/contact_time_s"},
+                           {"peak_normal_force_n", "/peak_normal_force_n"},
+                           {"mean_normal_force_n", "/mean_normal_force_n"},
+                           {"normal_impulse_n_s", "/normal_impulse_n_s"},
+                           {"binned_peak_normal_force_n", "/binned_force/peak_normal_force_n"},
+                           {"friction_work_j", "/friction_work_j"},
+                           {"max_tip_deflection_ratio", "/max_tip_deflection_ratio"},
+                           {"energy_audit_residual", "/energy_audit_residual"},
+                           {"steps", "/steps"},
+                           {"rhs_evaluations", "/rhs_evaluations"},
+                           {"wall_time_s", "/wall_time_s"}};
 
 }  // namespace
 
@@ -285,7 +301,7 @@ std::string sweep_csv(const SweepReport& report) {
     out += csv_field(a.key);
   }
   out += ",status";
-  for (const char* m : kMetrics) out += std::string(",") + m;
+  for (const Metric& m : kMetrics) out += std::string(",") + m.column;
   out += ",message\n";
   for (std::size_t i = 0; i < report.cases.size(); ++i) {
     const SweepCase& c = report.cases[i];
@@ -298,11 +314,12 @@ std::string sweep_csv(const SweepReport& report) {
       out += csv_field(v);
     }
     out += std::string(",") + sweep_status_name(r.status);
-    for (const char* m : kMetrics) {
+    for (const Metric& m : kMetrics) {
       out += ",";
-      if (r.summary.is_object() && r.summary.contains(m) && !r.summary[m].is_null()) {
+      const nlohmann::json::json_pointer at(m.pointer);
+      if (r.summary.is_object() && r.summary.contains(at) && r.summary[at].is_number()) {
         char buf[40];
-        std::snprintf(buf, sizeof buf, "%.17g", r.summary[m].get<double>());
+        std::snprintf(buf, sizeof buf, "%.17g", r.summary[at].get<double>());
         out += buf;
       }
     }
