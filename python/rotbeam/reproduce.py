@@ -421,12 +421,14 @@ def path_panel(ax, h, ev, surface, title, sel=None, impacts=True):
     """−X against Y (mm): free and contact rows, the surface, the impacts."""
     sel = np.ones(len(h["t_s"]), bool) if sel is None else sel
     ax.plot(h["y_tip_m"][sel] * 1e3, -h["x_tip_m"][sel] * 1e3, "-", lw=0.6, color="C0", alpha=0.6)
-    for ph, color, label in (("free", "C0", "free flight (history rows)"), ("contact", "C1", "sustained contact")):
+    # Contact rows lie on the surface line: drawn over it, larger, so that they show.
+    for ph, color, label, ms, z in (("free", "C0", "free flight (history rows)", 2, 2),
+                                    ("contact", "C1", "sustained contact", 3.5, 4)):
         s = sel & (h["phase"] == ph)
         if s.any():
-            ax.plot(h["y_tip_m"][s] * 1e3, -h["x_tip_m"][s] * 1e3, ".", ms=2, color=color, label=label)
+            ax.plot(h["y_tip_m"][s] * 1e3, -h["x_tip_m"][s] * 1e3, ".", ms=ms, color=color, label=label, zorder=z)
     y_all = h["y_tip_m"][sel] * 1e3
-    draw_surface(ax, surface, y_all, color="k", lw=0.8, label="surface")
+    draw_surface(ax, surface, y_all, color="k", lw=0.5, label="surface", zorder=3)
     if impacts:
         _, yi, _ = impacts_of(ev)
         t_imp = ev["t_s"][ev["kind"] == "impact"] if len(ev.get("kind", [])) else np.array([])
