@@ -5,6 +5,7 @@
 #include "rotbeam/config.hpp"
 #include "rotbeam/force_bins.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <gtest/gtest.h>
 #include <map>
@@ -54,6 +55,13 @@ TEST(ForceBins, SpreadMomentumIsConservedAndSharedByAngle) {
   ForceBins odd(0.7, 10.0);
   odd.add_spread(179.9, 0.2, 1.0, 0.0);
   EXPECT_NEAR(sum_normal(odd.table()), 1.0, 1e-14);
+  ForceBins last(0.7, 10.0);  // 514 bins of 0.7° and one of 0.2°, [179.8°, 180°)
+  last.add_spread(179.85, 0.1, 1.0, 0.0);
+  const std::vector<ForceBin> lt = last.table();
+  ASSERT_EQ(lt.size(), 1u);
+  EXPECT_NEAR(lt[0].to_deg - lt[0].from_deg, 0.2, 1e-9);
+  EXPECT_NEAR(lt[0].mean_normal_force_n, 1.0 / (0.2 * M_PI / 180.0 / 10.0), 1e-6);
+  EXPECT_NEAR(last.peaks().peak_normal_at_deg, 179.9, 1e-9);
   bins.clear();
   EXPECT_TRUE(bins.table().empty());
   EXPECT_TRUE(std::isnan(bins.peaks().peak_normal_at_deg));
@@ -192,4 +200,28 @@ TEST(History, NearSurfaceRowsLieOnTheTrajectory) {
   // 120 µs at 2 µs: about 60 rows.
   EXPECT_GT(compared, 40);
   std::printf("near-surface rows compared: %d, largest tip difference %.3g m\n", compared, largest);
+}
+
+TEST(History, RowsOffEventsAreNeverNearDuplicates) {
+  // A row written at k·h can leave t/h a hair below k; the next grid time must then be (k + 1)·h,
+  // not t again. Over three revolutions (rows at 1e-5 s, and at 2e-6 s near the surface) two rows
+  // closer than 1e-8 s must share an event's time (an impact's before/after rows, a separation);
+  // before, rows 4.4e-10 s apart appeared where 0.4492/1e-5 rounds to 44919.99999999999.
+  const PassResult r = run({"hub.speed_rpm=300", "beam.modes=3", "simulation.revolutions=3", "beam.damping_ratio=0.02",
+                            "output.history_revolutions=\"all\""});
+  std::vector<double> event_times;
+  for (const PassEvent& e : r.events) event_times.push_back(e.t);
+  const auto at_event = [&](double t) {
+    return std::any_of(event_times.begin(), event_times.end(), [&](double te) { return std::abs(te - t) < 1e-12; });
+  };
+  int close = 0;
+  for (std::size_t i = 1; i < r.history.size(); ++i) {
+    const double a = r.history[i - 1].t, b = r.history[i].t;
+    EXPECT_GE(b, a) << i;
+    if (b - a < 1e-8 && !at_event(a) && !at_event(b)) {
+      ++close;
+      ADD_FAILURE() << "rows " << i - 1 << " and " << i << " at t = " << a << ", " << b << " s";
+      if (close > 5) break;
+    }
+  }
 }

@@ -205,6 +205,7 @@ TEST(PassFiles, TheHistoryEstimateMatchesWhatARunWrites) {
   }
   // Unknown with every step sampled; refused (naming the key) where it cannot fit.
   EXPECT_FALSE(estimate_history(build_case(load_config(std::nullopt, {"output.interval_s=0"}))).known);
+  EXPECT_FALSE(estimate_history(build_case(load_config(std::nullopt, {"output.near_surface_interval_s=0"}))).known);
   const Case slow = build_case(load_config(std::nullopt, {"hub.speed_rpm=0.5"}));
   try {
     check_history_fits(slow, 1e8, false);

@@ -41,10 +41,11 @@ void print_summary(const Config& config, const PassResult& r, const std::string&
   else if (s.impacts > 0)
     std::cout << "  peak normal force     none at any instant: no sustained contact, the pass is " << s.impacts
               << (s.impacts == 1 ? " impact" : " impacts") << "\n";
-  if (s.impacts > 0)
+  if (!r.force_bins.empty())
     std::cout << "  binned force          peak " << fixed(s.binned_force.peak_normal_force_n, 4) << " N normal, "
               << fixed(s.binned_force.peak_tangential_force_n, 4) << " N tangential (momentum per "
-              << number_text(s.binned_force.bin_deg) << "° bin of hub angle, impacts included; force_bins.csv)\n";
+              << number_text(s.binned_force.bin_deg) << "° bin of hub angle, impacts included"
+              << (config.simulation.revolutions > 0 ? ", last complete revolution" : "") << "; force_bins.csv)\n";
   std::cout << "  normal impulse        " << s.normal_impulse_n_s * 1e3 << " mN s\n";
   std::cout << "  friction work         " << s.friction_work_j * 1e3 << " mJ\n";
   std::cout << "  max |y_t|/L           " << fixed(s.max_tip_deflection_ratio, 4) << "\n";

@@ -49,7 +49,8 @@ public:
 
 private:
   int index(double angle_deg) const;
-  double bin_duration_s() const;
+  double bin_width_deg(int k) const;   // bin_deg, less for a last bin cut at 180°
+  double bin_duration_s(int k) const;  // the time the hub takes to turn bin k [s]
 
   double bin_deg_, omega_;
   int count_;

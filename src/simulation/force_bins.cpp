@@ -29,7 +29,9 @@ int ForceBins::index(double angle_deg) const {
   return std::min(static_cast<int>(a / bin_deg_), count_ - 1);
 }
 
-double ForceBins::bin_duration_s() const { return bin_deg_ * M_PI / 180.0 / omega_; }
+double ForceBins::bin_width_deg(int k) const { return k == count_ - 1 ? 360.0 - k * bin_deg_ : bin_deg_; }
+
+double ForceBins::bin_duration_s(int k) const { return bin_width_deg(k) * M_PI / 180.0 / omega_; }
 
 void ForceBins::add_impulse(double angle_deg, double normal_n_s, double tangential_n_s) {
   const int k = index(angle_deg);
@@ -78,12 +80,12 @@ std::vector<ForceBin> ForceBins::table() const {
       last = k;
     }
   if (first < 0) return out;
-  const double duration = bin_duration_s();
   out.reserve(last - first + 1);
   for (int k = first; k <= last; ++k) {
+    const double duration = bin_duration_s(k);
     ForceBin b;
     b.from_deg = -180.0 + k * bin_deg_;
-    b.to_deg = std::min(180.0, b.from_deg + bin_deg_);
+    b.to_deg = b.from_deg + bin_width_deg(k);
     b.normal_impulse_n_s = normal_[k];
     b.tangential_impulse_n_s = tangential_[k];
     b.mean_normal_force_n = normal_[k] / duration;
@@ -98,17 +100,17 @@ BinnedForcePeaks ForceBins::peaks() const {
   BinnedForcePeaks p;
   p.bin_deg = bin_deg_;
   p.peak_normal_at_deg = NAN;
-  const double duration = bin_duration_s();
   double best = -1.0;
   for (int k = 0; k < count_; ++k) {
     if (!touched_[k]) continue;
-    if (normal_[k] > best) {
-      best = normal_[k];
-      p.peak_normal_at_deg = -180.0 + (k + 0.5) * bin_deg_;
+    const double duration = bin_duration_s(k);
+    if (normal_[k] / duration > best) {
+      best = normal_[k] / duration;
+      p.peak_normal_at_deg = -180.0 + k * bin_deg_ + 0.5 * bin_width_deg(k);
     }
     p.peak_tangential_force_n = std::max(p.peak_tangential_force_n, std::abs(tangential_[k]) / duration);
   }
-  if (best >= 0.0) p.peak_normal_force_n = best / duration;
+  if (best >= 0.0) p.peak_normal_force_n = best;
   return p;
 }
 

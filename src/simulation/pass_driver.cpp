@@ -224,7 +224,9 @@ void PassDriver::contact() {
     const StepOutcome o = stepper_.step(state_, stop_time());
     if (o.status == StepStatus::failed) return fail(o.failure->kind, o.failure->t, o.failure->message, Phase::contact);
     if (o.root == Root::multiplier_vanishes) {  // separation
-      rec_.accept(state_.t, state_.q, state_.qd, Phase::contact, ContactLoad{}, o.integrals, true);
+      ContactLoad zero;  // no force at λ = 0; the slip of the step, for the friction's impulse over it
+      zero.slip = state_.slip;
+      rec_.accept(state_.t, state_.q, state_.qd, Phase::contact, zero, o.integrals, true);
       rec_.contact_end(state_.t, state_.q, state_.qd, "λ reached 0");
       instant_transitions_ = (state_.t - t_enter < kInstant) ? instant_transitions_ + 1 : 0;
       return separate();

@@ -10,6 +10,10 @@ namespace {
 // Below this |y_t|/L the model's foreshortening stays close to the exact one (≈ 0.05 L at 0.3 L), so
 // the tip is within reach and the distance is not computed.
 constexpr double kReachCheckRatio = 0.3;
+
+// The first time of the grid k·h after t [s]. A row written at k·h gives t/h a hair below k at
+// times: the guard keeps it from naming t again.
+double next_grid_time(double t, double h) { return h * (std::floor(t / h + 1e-9) + 1.0); }
 }  // namespace
 
 const char* phase_name(Phase p) {
@@ -134,10 +138,9 @@ void PassRecorder::sample(double t, const Eigen::VectorXd& q, const Eigen::Vecto
     control_.sink->row(row_);
   else
     result_.history.push_back(row_);
-  const double h = options_.near_surface_interval_s;
-  next_near_t_ = h > 0.0 ? h * (std::floor(t / h) + 1.0) : t;
+  next_near_t_ = options_.near_surface_interval_s > 0.0 ? next_grid_time(t, options_.near_surface_interval_s) : t;
   if (options_.output_interval_s <= 0.0) return;  // every accepted point is sampled
-  next_sample_t_ = options_.output_interval_s * (std::floor(t / options_.output_interval_s) + 1.0);
+  next_sample_t_ = next_grid_time(t, options_.output_interval_s);
 }
 
 bool PassRecorder::near_surface(double t, const Eigen::VectorXd& q) {
@@ -157,7 +160,7 @@ void PassRecorder::rigid_turn(double t_to) {
     const double h = near_surface(tk, iq_) && options_.near_surface_interval_s > 0.0
                          ? std::min(far, options_.near_surface_interval_s)
                          : far;
-    tk = h * (std::floor(tk / h + 1e-9) + 1.0);  // the next grid time, never tk itself
+    tk = next_grid_time(tk, h);
     if (!(tk < t_to)) break;
     sample(tk, iq_, iqd_, Phase::free, ContactLoad{});
   }
@@ -168,13 +171,15 @@ void PassRecorder::free_rows_within(double t, const Eigen::VectorXd& q, Stepper&
   if (!(h > 0.0) || !(options_.near_surface_gap_m > 0.0)) return;
   const double gap_before = last_gap_;
   if (!near_surface(t, q) && !(gap_before > -options_.near_surface_gap_m)) return;
-  double tk = std::max(next_near_t_, h * (std::floor(last_t_ / h) + 1.0));
+  double tk = std::max(next_near_t_, next_grid_time(last_t_, h));
   while (tk < t) {
     if (tk > last_t_) {
       if (!stepper.interpolate(tk, iq_, iqd_)) return;
       sample(tk, iq_, iqd_, Phase::free, ContactLoad{});
     }
-    tk = std::max(next_near_t_, tk + 0.5 * h);
+    const double next = std::max(next_near_t_, next_grid_time(tk, h));
+    if (!(next > tk)) return;  // h below the resolution of t: no finer rows to give
+    tk = next;
   }
 }
 

@@ -42,7 +42,9 @@ FirstImpactResult run_first_impact(const Case& c, const PassControl& control) {
 HistoryEstimate estimate_history(const Case& c) {
   HistoryEstimate e;
   const PassOptions& o = c.options;
+  // Rows at every step (everywhere, or near the surface) depend on the steps: unknown.
   if (!(o.output_interval_s > 0.0)) return e;
+  if (o.near_surface_gap_m > 0.0 && !(o.near_surface_interval_s > 0.0)) return e;
   const BeamModel& beam = *c.beam;
   const double omega = beam.hub_motion().omega;
   double span_s, rigid_rows = 0.0, passes = 1.0;

@@ -101,7 +101,10 @@ ConvergenceStudy run_convergence(const Config& base, const ConvergenceLadder& la
     r.modes = n;
     add(c, r);
   }
-  for (Config& c : configs) c.simulation.output_interval_s = 1e30;  // only the summary is needed
+  for (Config& c : configs) {  // only the summary is needed
+    c.simulation.output_interval_s = 1e30;
+    c.simulation.near_surface_gap_m = 0.0;
+  }
 
   JobRunnerOptions runner;
   runner.threads = jobs;

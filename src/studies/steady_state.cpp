@@ -57,6 +57,7 @@ SectionMap::SectionMap(const System& system, const PassOptions& options, const S
   options_.until_steady = false;
   options_.history_revolutions = 1;
   options_.output_interval_s = 1e9;  // rows only at events: the samples do not change the integration
+  options_.near_surface_gap_m = 0.0;
 }
 
 MapEvaluation SectionMap::operator()(const Eigen::VectorXd& z, int m) const {
@@ -244,6 +245,7 @@ PassResult shooting(const System& system, const InitialConditions& initial, cons
   warm.revolutions = std::min(settings.warmup_revolutions, options.revolutions);
   warm.end_angle_deg = system.beam.theta(0.0) * 180.0 / M_PI + 360.0 * warm.revolutions;
   warm.output_interval_s = 1e9;
+  warm.near_surface_gap_m = 0.0;
   DiscardSink discard;
   PassControl warm_control{&discard, control.stop, control.on_progress};
   PassResult w = run_pass(system, initial, warm, warm_control);
@@ -257,6 +259,7 @@ PassResult shooting(const System& system, const InitialConditions& initial, cons
     if (!stopped) {
       PassOptions again = warm;
       again.output_interval_s = options.output_interval_s;
+      again.near_surface_gap_m = options.near_surface_gap_m;
       w = run_pass(system, initial, again, control);
     }
     SteadyState& st = w.summary.steady_state;
