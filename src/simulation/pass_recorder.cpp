@@ -145,7 +145,11 @@ void PassRecorder::sample(double t, const Eigen::VectorXd& q, const Eigen::Vecto
 
 bool PassRecorder::near_surface(double t, const Eigen::VectorXd& q) {
   if (!(options_.near_surface_gap_m > 0.0)) return false;
-  last_gap_ = gap(system_.beam, system_.surface, t, q);
+  // free_rows_within and accept ask at the same point of free flight: the gap is computed once.
+  if (t != gap_t_) {
+    last_gap_ = gap(system_.beam, system_.surface, t, q);
+    gap_t_ = t;
+  }
   return last_gap_ > -options_.near_surface_gap_m;
 }
 

@@ -95,7 +95,8 @@ private:
   Eigen::VectorXd generalized_force_, qdd_;
   double next_sample_t_ = 0;
   double next_near_t_ = 0;              // the next row time on the near-surface grid [s]
-  double last_gap_ = -INFINITY;         // the gap at the last accepted point [m]
+  double last_gap_ = -INFINITY;         // the gap at the last point asked about [m]
+  double gap_t_ = NAN;                  // … and its time [s]
   Eigen::VectorXd iq_, iqd_;            // interpolated or rigid-turn states (scratch)
   ForceBins bins_;                      // of the pass, or of the revolution under way
   std::vector<ForceBin> complete_bins_;  // the last complete revolution's (runs over many)

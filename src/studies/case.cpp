@@ -65,7 +65,8 @@ HistoryEstimate estimate_history(const Case& c) {
   }
   // Near the surface the rows come every near_surface_interval_s: over about the stretch where the
   // undeformed tip is within near_surface_gap_m of the surface, once per pass or kept revolution
-  // (the flexible tip's stretch differs by its bounce and rub: measured −25 … +15 % of the rows).
+  // (the flexible tip's stretch differs by its bounce and rub: the estimate is 0.89–1.20 of the
+  // rows written on the cases of PassFiles.TheHistoryEstimateMatchesWhatARunWrites).
   double near_rows = 0.0;
   if (o.near_surface_gap_m > 0.0 && o.near_surface_interval_s > 0.0 && o.near_surface_interval_s < o.output_interval_s) {
     const double entry = c.surface->first_contact_angle(beam.tip_radius() + o.near_surface_gap_m, beam.theta(0.0));
