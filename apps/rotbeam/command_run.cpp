@@ -35,6 +35,9 @@ void print_summary(const Config& config, const PassResult& r, const std::string&
               << fixed(s.last_separation_deg, 3) << "° (last separation)\n";
   else
     std::cout << "  contact span          none: the tip never reached the surface\n";
+  if (std::isfinite(s.ended_clear_deg))
+    std::cout << "  ended early           at θ = " << fixed(s.ended_clear_deg, 3)
+              << "°: the tip cannot reach the surface again before the end angle (simulation.end_when_clear)\n";
   if (s.contact_episodes > 0 || s.contact_time_s > 0)
     std::cout << "  peak normal force     " << fixed(s.peak_normal_force_n, 4) << " N (mean in contact "
               << fixed(s.mean_normal_force_n, 4) << " N)\n";

@@ -53,6 +53,14 @@ struct HubFrameTip {
   double x_quadratic = 0, y_quadratic = 0;  // [m/s²]
 };
 
+/// The equations of motion linearised about the straight filament q = 0 (SPEC §3):
+/// M0 q̈ + C q̇ + K q = 0, with M0 = M(0) [kg], K the bending plus linear centrifugal stiffness [N/m]
+/// and C the beam's own damping [kg/s] (zero when undamped). G(0) = 0, so there is no gyroscopic
+/// term. The modal analysis and the integrating factor of the adaptive scheme start from it.
+struct Linearization {
+  Eigen::MatrixXd mass, stiffness, damping;
+};
+
 /// Energies and hub angular momentum of the filament at (q, q̇) (SPEC §3, §7). All in joules
 /// (moments of inertia in kg m², momenta in kg m²/s).
 struct EnergyTerms {
@@ -110,6 +118,14 @@ public:
   virtual double dissipation(const Eigen::Ref<const Eigen::VectorXd>& qd) const = 0;
   /// True when the beam has damping (dissipation is not identically zero).
   virtual bool damped() const = 0;
+  /// M0, K and C of the linearisation about q = 0 (every matrix n × n).
+  virtual Linearization linearization() const = 0;
+  /// A bound δ [m] on the tip's distance from its undeformed position (r_h + L, 0) in the hub frame
+  /// for all of a free flight that starts at (q, q̇) with ω constant, or +inf where the model gives
+  /// none: the Jacobi integral, which free flight never increases, confines q (SPEC §7; docs/model.md
+  /// "Free flight that cannot reach the surface"). Overwrites the workspace.
+  virtual double tip_excursion_bound(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                     const Eigen::Ref<const Eigen::VectorXd>& qd, BeamWorkspace& ws) const = 0;
 
   /// θ(t) [rad] and its inverse [s].
   double theta(double t) const { return hub_motion().theta(t); }

@@ -69,6 +69,21 @@ public:
                                const Eigen::Ref<const Eigen::VectorXd>& qdd, BeamWorkspace& ws) const override;
   /// q̇ᵀC q̇ (0 when undamped).
   double dissipation(const Eigen::Ref<const Eigen::VectorXd>& qd) const override;
+  /// M0 = m·1, K = K_ω(0) + K_b(0) (linear_stiffness, dynamics.hpp), C = damping.
+  Linearization linearization() const override;
+  /// With V(q) = U − T0 (T2 ≥ 0, so V ≤ h for the rest of the flight) and E = ½qᵀKq:
+  /// V(q) − V(0) ≥ E − βE², β = ω²mμ²/(2L²), μ = λ_max(K⁻¹ ISP(1)) (the quartic bending energy is
+  /// ≥ 0 and ∫(qᵀISP q)² ≤ (qᵀISP(1)q)² ≤ (2μE)²). While H = h − V(0) < 1/(4β) and E ≤ 1/(2β), E
+  /// stays below E₁ = 2H/(1 + √(1 − 4βH)); then |y_t| ≤ √(2E₁ S(1)ᵀK⁻¹S(1)) and the tip's
+  /// foreshortening qᵀISP(1)q/(2L) ≤ μE₁/L. δ = √(y² + x²) of the two; +inf outside that range or
+  /// when K is not positive definite.
+  double tip_excursion_bound(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qd,
+                             BeamWorkspace& ws) const override;
+  // Constants of the bound, set by make_beam: K [N/m], S(1)ᵀK⁻¹S(1) [m/N], μ [m/N], V(0) [J];
+  // excursion_valid is false when K is not positive definite.
+  Eigen::MatrixXd linear_stiffness_;
+  bool excursion_valid = false;
+  double excursion_tip_compliance = 0, excursion_mu = 0, excursion_v0 = 0;
 };
 
 /// Builds the model; θ0 = `theta0_rad` (default −π/2). Throws std::invalid_argument on

@@ -21,6 +21,7 @@ enum class EventKind {
   warning,            // a warning (also listed in summary.json `warnings`)
   failure,            // the numerical failure that stopped the pass
   end,                // the end of the pass
+  clear,              // simulation.end_when_clear: the tip cannot reach the surface again before the end angle
 };
 
 /// Why a pass stopped before its end angle (summary.json `failure.kind`).
@@ -70,7 +71,7 @@ inline constexpr std::array<FailureInfo, 10> kFailures = {{
     {FailureKind::interrupted, "interrupted", 130, "stopped on request; results up to there kept"},
 }};
 
-inline constexpr std::array<std::pair<EventKind, const char*>, 9> kEvents = {{
+inline constexpr std::array<std::pair<EventKind, const char*>, 10> kEvents = {{
     {EventKind::impact, "impact"},
     {EventKind::lift_off, "lift_off"},
     {EventKind::contact_start, "contact_start"},
@@ -80,6 +81,7 @@ inline constexpr std::array<std::pair<EventKind, const char*>, 9> kEvents = {{
     {EventKind::warning, "warning"},
     {EventKind::failure, "failure"},
     {EventKind::end, "end"},
+    {EventKind::clear, "clear"},
 }};
 
 }  // namespace detail

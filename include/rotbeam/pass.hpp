@@ -128,6 +128,9 @@ struct PassSummary {
   double energy_change_j = 0;       // E = T + U at the end less at the start [J]
   double max_tip_deflection_ratio = 0;
   double energy_audit_residual = 0;
+  // simulation.end_when_clear: the angle at which the pass ended because the tip could no longer
+  // reach the surface before end_angle_deg; NaN when it ran to its end angle.
+  double ended_clear_deg = NAN;
   long steps = 0;
   long rhs_evaluations = 0;
   long corrector_iterations = 0;

@@ -27,6 +27,9 @@ inline constexpr int kMaxSteadyPeriod = 4;
 struct PassOptions {
   Scheme scheme = Scheme::adaptive;   // simulation.scheme
   double end_angle_deg = 90.0;        // simulation.end_angle_deg: stop angle θ [deg] (one pass)
+  // simulation.end_when_clear: end one pass early, in free flight, once the tip provably cannot
+  // reach the surface before end_angle_deg (BeamModel::tip_excursion_bound, Surface::max_gap_on_arc).
+  bool end_when_clear = false;
   // Revolutions (SPEC §12): with revolutions > 0 the run ends after that many whole turns from θ0
   // (end_angle_deg is then θ0 + 360·revolutions) and the section θ = θ0 (mod 360°) closes each one.
   int revolutions = 0;                // simulation.revolutions: 0 = one pass to end_angle_deg
@@ -47,6 +50,9 @@ struct PassOptions {
   double atol = 1e-12;                // simulation.atol
   double max_step_s = 2e-5;           // simulation.max_step_s: upper bound on the adaptive step [s]
   double event_tolerance_s = 1e-13;   // events located to this bracket width [s]
+  // simulation.integrating_factor: propagate the linear modal oscillation about q = 0 exactly and
+  // integrate only the remainder (Lawson's method, integrating_factor.hpp); false: plain DP5 on q, q̇.
+  bool integrating_factor = true;
   // Both schemes.
   int max_impacts = 10000;                 // simulation.max_impacts
   double deflection_warning_ratio = 0.1;   // simulation.deflection_warning_ratio: warn past max |y_t|/L

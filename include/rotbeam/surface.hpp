@@ -17,13 +17,17 @@ namespace rotbeam {
 class Surface {
 public:
   virtual ~Surface() = default;
-  /// Gap C at the global tip position R = (X, Y) at time t [m]: < 0 clear, 0 touching.
+  /// Gap C at the global tip position R = (X, Y) at time t [m]: < 0 clear, 0 touching. A signed
+  /// distance: |C(R) − C(R')| ≤ |R − R'| (the excursion test of simulation.end_when_clear relies on it).
   virtual double gap(const Eigen::Vector2d& position, double t) const = 0;
   /// Fills the contact-geometry fields of `tip` (gap … gamma_tangent) from its motion fields.
   virtual void contact_geometry(TipKinematics& tip) const = 0;
   /// The first beam angle θ ≥ θ_from [rad] at which a point at distance `radius` from the hub centre
   /// on the undeformed filament reaches the surface while approaching it, or NaN if it never does.
   virtual double first_contact_angle(double radius, double theta_from) const = 0;
+  /// The largest gap [m] of the point at distance `radius` from the hub centre on the undeformed
+  /// filament over the beam angles [theta_from, theta_to] [rad] (at the times the hub has them).
+  virtual double max_gap_on_arc(double radius, double theta_from, double theta_to) const = 0;
   /// The beam angle [rad] (mod 2π) at which the undeformed filament points at the surface's deepest
   /// point: 0° of the per-revolution angles (SPEC §11).
   virtual double deepest_angle() const = 0;

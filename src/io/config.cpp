@@ -152,6 +152,7 @@ struct Parsed {
   const toml::node* damping_node = nullptr;
   const toml::node* revolutions_node = nullptr;
   const toml::node* method_node = nullptr;
+  const toml::node* end_when_clear_node = nullptr;
 };
 
 using Setter = std::function<void(Parsed&, const std::string&, const toml::node&)>;
@@ -255,6 +256,12 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
       {"simulation.atol", [](Parsed& p, auto& k, auto& n) { p.config.simulation.atol = number_in(k, n, 0.0, 1e-3, true, false); }},
       // Steps below these would take over 1e9 steps for a pass of a few centiseconds.
       {"simulation.max_step_s", [](Parsed& p, auto& k, auto& n) { p.config.simulation.max_step_s = number_in(k, n, 1e-11, 1e-2, false, false); }},
+      {"simulation.end_when_clear",
+       [](Parsed& p, auto& k, auto& n) {
+         p.config.simulation.end_when_clear = boolean(k, n);
+         p.end_when_clear_node = &n;
+       }},
+      {"simulation.integrating_factor", [](Parsed& p, auto& k, auto& n) { p.config.simulation.integrating_factor = boolean(k, n); }},
       {"simulation.free_step_s", [](Parsed& p, auto& k, auto& n) { p.config.simulation.free_step_s = number_in(k, n, 1e-11, 1e-3, false, false); }},
       {"simulation.contact_step_s", [](Parsed& p, auto& k, auto& n) { p.config.simulation.contact_step_s = number_in(k, n, 1e-12, 1e-4, false, false); }},
       {"simulation.fine_contact_step_s", [](Parsed& p, auto& k, auto& n) { p.config.simulation.fine_contact_step_s = number_in(k, n, 1e-13, 1e-4, false, false); }},
@@ -434,6 +441,10 @@ Config validate(toml::table& root) {
     fail("simulation.end_angle_deg", *p.end_angle_node,
          "cannot be given with simulation.revolutions = " + std::to_string(sim.revolutions) +
              " (a run ends after whole revolutions or at an angle, not both)");
+  if (p.revolutions_node && sim.end_when_clear)
+    fail("simulation.end_when_clear", *p.end_when_clear_node,
+         "ends one pass early; with simulation.revolutions = " + std::to_string(sim.revolutions) +
+             " every revolution's free flight is the point");
   if (sim.steady_method == SteadyMethod::shooting && !sim.until_steady)
     fail("simulation.steady_method", *p.method_node,
          "shooting searches for the steady state: it needs simulation.until_steady = true");
@@ -516,6 +527,8 @@ nlohmann::json Config::to_json() const {
                      {"rtol", sim.rtol},
                      {"atol", sim.atol},
                      {"max_step_s", sim.max_step_s},
+                     {"integrating_factor", sim.integrating_factor},
+                     {"end_when_clear", sim.end_when_clear},
                      {"free_step_s", sim.free_step_s},
                      {"contact_step_s", sim.contact_step_s},
                      {"fine_contact_step_s", sim.fine_contact_step_s},

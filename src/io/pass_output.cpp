@@ -5,6 +5,7 @@
 #include "rotbeam/folder_lock.hpp"
 
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -19,14 +20,16 @@ namespace {
 
 constexpr std::size_t kFlushBytes = 1 << 20;
 
+// The shortest decimal that reads back to the same double (std::to_chars; about 4× cheaper than
+// printf's %.17g and never longer).
 void put(std::string& out, double v) {
   char buf[40];
   if (std::isnan(v)) {
     out += "nan";
     return;
   }
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  out += buf;
+  const auto end = std::to_chars(buf, buf + sizeof buf, v).ptr;
+  out.append(buf, end);
 }
 
 nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
@@ -202,6 +205,7 @@ nlohmann::json summary_json(const PassResult& result, const Config& config, cons
   } else {
     j["steady_state"] = nullptr;
   }
+  j["ended_clear_deg"] = number_or_null(s.ended_clear_deg);
   j["steps"] = s.steps;
   j["rhs_evaluations"] = s.rhs_evaluations;
   j["corrector_iterations_max"] = s.corrector_iterations_max;

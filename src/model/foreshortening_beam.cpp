@@ -6,6 +6,7 @@
 #include "rotbeam/quadrature.hpp"
 #include "rotbeam/detail/quadratic_form.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -111,6 +112,28 @@ double ForeshorteningBeam::dissipation(const Eigen::Ref<const Eigen::VectorXd>& 
   return damped() ? detail::quadratic_form(damping, qd) : 0.0;
 }
 
+Linearization ForeshorteningBeam::linearization() const {
+  Linearization lin;
+  lin.mass = mass * Eigen::MatrixXd::Identity(n, n);
+  lin.stiffness = linear_stiffness(*this);
+  lin.damping = damped() ? damping : Eigen::MatrixXd::Zero(n, n);
+  return lin;
+}
+
+double ForeshorteningBeam::tip_excursion_bound(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                               const Eigen::Ref<const Eigen::VectorXd>& qd, BeamWorkspace& ws) const {
+  if (!excursion_valid) return INFINITY;
+  const double h = energy(q, qd, ws).jacobi;
+  const double big_h = std::max(h - excursion_v0, 0.0);
+  const double beta = omega * omega * mass * excursion_mu * excursion_mu / (2.0 * length * length);
+  const double e_now = 0.5 * detail::quadratic_form(linear_stiffness_, q);
+  if (4.0 * beta * big_h >= 1.0 || 2.0 * beta * e_now > 1.0) return INFINITY;
+  const double e1 = 2.0 * big_h / (1.0 + std::sqrt(1.0 - 4.0 * beta * big_h));
+  const double y = std::sqrt(2.0 * e1 * excursion_tip_compliance);
+  const double x = excursion_mu * e1 / length;
+  return std::hypot(x, y);
+}
+
 namespace {
 // C = M0 Φ diag(2ζ_iΩ_i) Φᵀ M0 with Φ mass-normalised (SPEC §11). M0 = m·1, so with the unit
 // eigenvectors V of K/m (Φ = V/√m) this is m V diag(2ζ_iΩ_i) Vᵀ.
@@ -165,6 +188,19 @@ ForeshorteningBeam make_beam(const BeamParameters& p, double theta0_rad) {
   m.mass = m.mass_per_length * p.length_m;
   m.integrals = modal_integrals(p.modes);
   m.damping = modal_damping(m, p.damping_ratio);
+  // The excursion bound's constants (tip_excursion_bound).
+  m.linear_stiffness_ = linear_stiffness(m);
+  const Eigen::LLT<Eigen::MatrixXd> k_llt(m.linear_stiffness_);
+  if (k_llt.info() == Eigen::Success) {
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> g(m.integrals->isp_tip, m.linear_stiffness_);
+    if (g.info() == Eigen::Success) {
+      m.excursion_valid = true;
+      m.excursion_mu = std::max(g.eigenvalues().maxCoeff(), 0.0);
+      m.excursion_tip_compliance = m.integrals->s_tip.dot(k_llt.solve(m.integrals->s_tip));
+      const double rh = m.hub_radius, L = m.length;
+      m.excursion_v0 = -0.5 * m.omega * m.omega * m.mass * (rh * rh + rh * L + L * L / 3.0);
+    }
+  }
   return m;
 }
 

@@ -12,6 +12,7 @@ namespace rotbeam {
 namespace {
 constexpr int kMaxInstantTransitions = 50;  // phase changes without time advancing → chatter diagnostic
 constexpr double kInstant = 1e-12;          // [s]: a phase that lasted less did not advance time
+constexpr double kClearCheckDeg = 0.5;      // simulation.end_when_clear: hub angle between checks [deg]
 using detail::short_number;
 }  // namespace
 
@@ -126,6 +127,7 @@ void PassDriver::free_flight() {
     const bool section = state_.t >= next_section_;
     rec_.accept(state_.t, state_.q, state_.qd, Phase::free, {}, o.integrals, section);
     if (section && cross_section()) break;
+    if (options_.end_when_clear && clear_for_the_rest()) break;
     report_progress();
     if (o.note) {
       rec_.event(o.note->kind, state_.t, state_.q, o.note->detail);
@@ -135,6 +137,24 @@ void PassDriver::free_flight() {
     if (rec_.stop_requested(state_.t)) break;
   }
   finish(Phase::free);
+}
+
+bool PassDriver::clear_for_the_rest() {
+  if (state_.t < next_clear_check_t_) return false;
+  const HubMotion hub = system_.beam.hub_motion();
+  next_clear_check_t_ = state_.t + kClearCheckDeg * M_PI / 180.0 / std::abs(hub.omega);
+  const double delta = system_.beam.tip_excursion_bound(state_.q, state_.qd, *ws_);
+  if (!std::isfinite(delta)) return false;
+  const double theta = hub.theta(state_.t), theta_end = hub.theta(t_end_);
+  const double reach = system_.surface.max_gap_on_arc(system_.beam.tip_radius(), std::min(theta, theta_end),
+                                                      std::max(theta, theta_end));
+  if (!(reach + delta < 0.0)) return false;
+  rec_.event(EventKind::clear, state_.t, state_.q,
+             "the tip stays within " + short_number(delta) + " m of its undeformed position (Jacobi integral) and the "
+             "undeformed tip stays " + short_number(-reach) + " m clear of the surface until the end angle: the pass "
+             "ends here (simulation.end_when_clear)");
+  rec_.ended_clear(state_.t);
+  return true;
 }
 
 void PassDriver::touch() {

@@ -41,6 +41,9 @@ private:
   // At a section (state_.t == next_section_): closes the revolution; true when the run must finish
   // (the steady state was reached). In free flight the stepper restarts there (FreeStart::pass_start).
   bool cross_section();
+  // simulation.end_when_clear: true when, from the current free-flight state, the tip provably
+  // cannot reach the surface before the end angle (checked every kClearCheckDeg of hub angle).
+  bool clear_for_the_rest();
 
   const System system_;
   const PassOptions options_;
@@ -60,6 +63,7 @@ private:
   std::function<void(const PassProgress&)> on_progress_;
   detail::ProgressClock progress_clock_;
   double flexible_from_t_ = 0.0;  // where the integration of the flexible motion began [s]
+  double next_clear_check_t_ = 0.0;  // simulation.end_when_clear: the next check [s]
 };
 
 }  // namespace rotbeam

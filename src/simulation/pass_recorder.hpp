@@ -37,6 +37,8 @@ public:
                      const std::string& detail);
   void contact_end(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const std::string& detail);
   void event(EventKind kind, double t, const Eigen::VectorXd& q, const std::string& detail);
+  /// The pass ends early at t: the tip cannot reach the surface again (simulation.end_when_clear).
+  void ended_clear(double t) { result_.summary.ended_clear_deg = system_.beam.theta(t) * 180.0 / M_PI; }
   /// A warning: kept once in the summary and recorded as an event at t.
   void warn(double t, const Eigen::VectorXd& q, const std::string& message);
   void fail(FailureKind kind, double t, const std::string& message);

@@ -1,5 +1,6 @@
 #include "rotbeam/plane.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace rotbeam {
@@ -26,6 +27,11 @@ double Plane::first_contact_angle(double radius, double theta_from) const {
   const double theta_star = -std::acos(distance_ / radius);
   const double turns = std::ceil((theta_from - theta_star) / (2.0 * M_PI));
   return turns > 0.0 ? theta_star + 2.0 * M_PI * turns : theta_star;
+}
+
+double Plane::max_gap_on_arc(double radius, double theta_from, double theta_to) const {
+  if (std::floor(theta_to / (2.0 * M_PI)) * 2.0 * M_PI >= theta_from) return radius - distance_;
+  return radius * std::max(std::cos(theta_from), std::cos(theta_to)) - distance_;
 }
 
 nlohmann::json Plane::describe() const { return {{"shape", "plane"}, {"distance_m", distance_}}; }
