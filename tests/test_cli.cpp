@@ -252,3 +252,35 @@ TEST(Cli, APlottingModuleThatCannotStartSaysWhyInOneLine) {
   EXPECT_FALSE(fs::exists(png));
   fs::remove_all(fake);
 }
+
+// A file named with --csv that is a symbolic link is written through (the link stays, its target
+// gets the table); a node that is not a regular file is written into, never replaced by a file
+// (it replaced the link, and /dev/stdout, by a regular file).
+TEST(Cli, AnOutputFileThatIsALinkOrADeviceIsWrittenThrough) {
+  const fs::path dir = fs::path(::testing::TempDir()) / ("rotbeam_cli_link_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "real.csv") << "target\n";
+  fs::create_symlink("real.csv", dir / "link.csv");
+  const CliRun linked = run("modes --csv " + (dir / "link.csv").string());
+  EXPECT_EQ(linked.status, 0) << linked.err;
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(dir / "link.csv")));
+  EXPECT_EQ(slurp((dir / "real.csv").string()).rfind("speed_rpm,f1_hz", 0), 0u);
+  fs::create_symlink("new.csv", dir / "dangling.csv");
+  EXPECT_EQ(run("modes --csv " + (dir / "dangling.csv").string()).status, 0);
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(dir / "dangling.csv")));
+  EXPECT_EQ(slurp((dir / "new.csv").string()).rfind("speed_rpm,f1_hz", 0), 0u);
+  // A link to the process's standard output, as /dev/stdout is: the table arrives on the pipe, and
+  // the link stays.
+  fs::create_symlink("/proc/self/fd/1", dir / "stdout");
+  const CliRun out = run("modes --csv " + (dir / "stdout").string());
+  EXPECT_EQ(out.status, 0) << out.err;
+  EXPECT_NE(out.out.find("speed_rpm,f1_hz"), std::string::npos) << out.out;
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(dir / "stdout")));
+  // The same with standard output sent to a file: the table is in that file, written in place.
+  const CliRun to_file = run("modes --csv " + (dir / "stdout").string() + " > " + (dir / "shell.txt").string());
+  EXPECT_EQ(to_file.status, 0) << to_file.err;
+  EXPECT_EQ(slurp((dir / "shell.txt").string()).rfind("speed_rpm,f1_hz", 0), 0u);
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(dir / "stdout")));
+  fs::remove_all(dir);
+}

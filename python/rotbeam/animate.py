@@ -25,8 +25,8 @@ import subprocess  # noqa: E402
 import sys  # noqa: E402
 from pathlib import Path  # noqa: E402
 
-from .plots import (DamagedFolder, case_title, check_run_files, read_csv, remove_stale_temporaries,  # noqa: E402
-                    surface_of, surface_x)
+from .plots import (DamagedFolder, case_title, check_run_files, put_in_place, read_csv,  # noqa: E402
+                    remove_stale_temporaries, surface_of, surface_x, temporary_beside)
 
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
@@ -354,7 +354,7 @@ class _GifSink:
     def __init__(self, target, fps):
         self.target = Path(target)
         remove_stale_temporaries(self.target)
-        self.tmp = self.target.with_name(f".{self.target.stem}.{os.getpid()}.tmp.gif")
+        self.tmp = temporary_beside(self.target, stem=True, suffix=".gif")
         self.duration_ms = 1000.0 / fps
         self.frames = []
 
@@ -370,7 +370,7 @@ class _GifSink:
     def finish(self):
         self.frames[0].save(self.tmp, save_all=True, append_images=self.frames[1:], duration=self.duration_ms,
                             loop=0, optimize=False)
-        os.replace(self.tmp, self.target)
+        put_in_place(self.tmp, self.target)
 
     def discard(self):
         self.frames = []
@@ -384,7 +384,7 @@ class _Mp4Sink:
     def __init__(self, target, fps, width, height):
         self.target = Path(target)
         remove_stale_temporaries(self.target)
-        self.tmp = self.target.with_name(f".{self.target.stem}.{os.getpid()}.tmp.mp4")
+        self.tmp = temporary_beside(self.target, stem=True, suffix=".mp4")
         self.proc = subprocess.Popen(
             ["ffmpeg", "-loglevel", "error", "-y", "-f", "rawvideo", "-pix_fmt", "rgba", "-s", f"{width}x{height}",
              "-r", f"{fps:g}", "-i", "-", "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264",
@@ -399,7 +399,7 @@ class _Mp4Sink:
         err = self.proc.stderr.read().decode(errors="replace").strip()
         if self.proc.wait() != 0:
             raise OSError(f"ffmpeg failed writing {self.target}: {err.splitlines()[-1] if err else 'no message'}")
-        os.replace(self.tmp, self.target)
+        put_in_place(self.tmp, self.target)
 
     def discard(self):
         if self.proc.poll() is None:

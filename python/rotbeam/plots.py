@@ -13,10 +13,13 @@ function returning its matplotlib figure (force_figure, tip_path_figure, energy_
 
 import argparse
 import csv
+import errno
 import json
 import math
 import os
+import shutil
 import sys
+import tempfile
 from pathlib import Path
 
 if __name__ == "__main__":
@@ -68,6 +71,37 @@ def remove_stale_temporaries(path):
             pass
 
 
+def output_target(path):
+    """The file that writing to path replaces: the file a symbolic link names (the link stays), or
+    path itself. None for a node that is not a regular file (a device, a pipe, /dev/stdout): that
+    one is written into, never replaced."""
+    path = Path(path)
+    if path.exists() and not path.is_file():
+        if path.is_dir():
+            raise IsADirectoryError(errno.EISDIR, "is a folder, not a file", str(path))
+        return None
+    return Path(os.path.realpath(path))
+
+
+def put_in_place(tmp, path):
+    """Puts the finished temporary tmp (made beside output_target(path)) at path."""
+    target = output_target(path)
+    if target is None:
+        with open(tmp, "rb") as src, open(path, "wb") as dst:
+            shutil.copyfileobj(src, dst)
+        Path(tmp).unlink()
+    else:
+        os.replace(tmp, target)
+
+
+def temporary_beside(path, stem=False, suffix=""):
+    """A temporary name `.NAME.PID.tmp[SUFFIX]` (NAME: the name, or its stem) beside the file that
+    writing to path replaces (see output_target; the temporary folder for a device)."""
+    path = Path(path)
+    target = output_target(path) or Path(tempfile.gettempdir()) / path.name
+    return target.with_name(f".{target.stem if stem else target.name}.{os.getpid()}.tmp{suffix}")
+
+
 def save_figure(fig, path, dpi=120):
     """Writes fig to path whole: into a temporary file beside it, renamed into place (an interrupted
     or failed save leaves no partial picture under the user's name)."""
@@ -76,10 +110,10 @@ def save_figure(fig, path, dpi=120):
     if fmt not in fig.canvas.get_supported_filetypes():
         raise ValueError(f"{path}: cannot write a picture as '.{fmt}' (use .png, .pdf or .svg)")
     remove_stale_temporaries(path)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    tmp = temporary_beside(path)
     try:
         fig.savefig(tmp, dpi=dpi, format=fmt)
-        os.replace(tmp, path)
+        put_in_place(tmp, path)
     except OSError as e:  # the temporary's name means nothing to the user: theirs, and why
         raise OSError(e.errno, e.strerror, str(path)) from None
     finally:

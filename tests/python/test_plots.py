@@ -388,3 +388,22 @@ def test_every_table_of_the_docs_is_one_block_under_its_header(name):
             f"{name}:{first}: rows without a header row and separator (a table cut by a blank line?)"
         cells = {len(re.findall(r"(?<!\\)\|", line)) for _, line in table}
         assert len(cells) == 1, f"{name}:{first}: rows with different numbers of cells {cells}"
+
+
+def test_a_picture_named_through_a_link_replaces_the_linked_file_and_keeps_the_link(tmp_path):
+    # save_figure renamed its temporary onto the link itself: the link became a regular file and
+    # the file it named was left as it was. A node that is not a regular file is written into.
+    (tmp_path / "real.png").write_text("old")
+    (tmp_path / "link.png").symlink_to("real.png")
+    fig = plt.figure()
+    plots.save_figure(fig, tmp_path / "link.png")
+    assert (tmp_path / "link.png").is_symlink()
+    assert (tmp_path / "real.png").read_bytes().startswith(b"\x89PNG")
+    fifo = tmp_path / "pipe.png"
+    os.mkfifo(fifo)
+    reader = subprocess.Popen(["cat", str(fifo)], stdout=subprocess.PIPE)
+    plots.save_figure(fig, fifo)
+    assert reader.communicate(timeout=30)[0].startswith(b"\x89PNG")
+    assert fifo.is_fifo()
+    plt.close(fig)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["link.png", "pipe.png", "real.png"]
