@@ -362,3 +362,23 @@ TEST(Reliability, AnInterruptedPlotLeavesNoScratchNorProcess) {
   fs::remove(err);
   fs::remove(png);
 }
+
+TEST(Reliability, OneHistoryRowPerState) {
+  // The state before an impact was written twice (the accepted point and the impact's own "before"
+  // row): one row per state, the pre/post pair of an impact kept.
+  BeamParameters p;
+  const ForeshorteningBeam model = make_beam(p);
+  const Plane plane = plane_at_depth(model, 0.02);
+  const PassResult r = run_pass({model, plane, {}}, InitialConditions{}, PassOptions{});
+  ASSERT_FALSE(r.failure);
+  ASSERT_GT(r.summary.impacts, 0);
+  int duplicates = 0, pairs = 0;
+  for (std::size_t i = 1; i < r.history.size(); ++i) {
+    const HistoryRow &a = r.history[i - 1], &b = r.history[i];
+    if (a.t != b.t || a.q != b.q) continue;
+    if (a.qd == b.qd && a.phase == b.phase && a.normal_force == b.normal_force) ++duplicates;
+    else ++pairs;
+  }
+  EXPECT_EQ(duplicates, 0);
+  EXPECT_GE(pairs, r.summary.impacts);
+}

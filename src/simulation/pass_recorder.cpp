@@ -40,6 +40,7 @@ PassRecorder::PassRecorder(const System& system, const PassOptions& options, con
       bins_(options.bin_deg, system.beam.hub_motion().omega) {
   row_.q.resize(system.beam.modes());
   row_.qd.resize(system.beam.modes());
+  row_.t = NAN;  // no row written yet
 }
 
 bool PassRecorder::stop_requested(double t) {
@@ -116,6 +117,11 @@ void PassRecorder::track(double t, const Eigen::VectorXd& q) {
 
 void PassRecorder::sample(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Phase phase,
                           const ContactLoad& load) {
+  // One row per state: an event that forces a row where one was just written (the pre-impact state,
+  // the pass's last state) gives no second, identical row.
+  if (t == row_.t && phase == row_.phase && q == row_.q && qd == row_.qd && load.normal_force == row_.normal_force &&
+      load.friction_force == row_.friction_force && load.lambda == row_.lambda)
+    return;
   tip_kinematics(system_.beam, system_.surface, t, q, qd, tip_);
   row_.t = t;
   row_.theta = tip_.theta;
