@@ -5,6 +5,7 @@
 #include "rotbeam/dynamics.hpp"
 #include "rotbeam/first_impact.hpp"
 #include "rotbeam/plane.hpp"
+#include "rotbeam/stop_token.hpp"
 
 #include <array>
 #include <cstdio>
@@ -361,6 +362,38 @@ TEST(Reliability, AnInterruptedPlotLeavesNoScratchNorProcess) {
   fs::remove_all(tmp);
   fs::remove(err);
   fs::remove(png);
+}
+
+namespace {
+// Counts what a pass hands it, keeping nothing.
+struct CountingSink : PassSink {
+  long rows = 0;
+  void row(const HistoryRow&) override { ++rows; }
+  void event(const PassEvent&) override {}
+};
+}  // namespace
+
+TEST(Reliability, ARigidApproachOfNearSurfaceRowsHonoursAStop) {
+  // A near-surface gap wider than the whole approach makes every row of the rigid turn a
+  // near-surface row: at 10 ns, millions of them, written without looking at the stop token (SIGINT
+  // was ignored for minutes). A stop requested before the pass ends it within the approach's far
+  // spacing, as `interrupted`.
+  BeamParameters p;
+  const ForeshorteningBeam model = make_beam(p);
+  const Plane plane = plane_at_depth(model, 0.02);
+  PassOptions opt;
+  opt.near_surface_gap_m = 1.0;
+  opt.near_surface_interval_s = 1e-8;
+  StopToken stop;
+  stop.request_stop();
+  CountingSink sink;
+  PassControl control;
+  control.stop = &stop;
+  control.sink = &sink;
+  const PassResult r = run_pass({model, plane, {}}, InitialConditions{}, opt, control);
+  ASSERT_TRUE(r.failure);
+  EXPECT_EQ(r.failure->kind, FailureKind::interrupted);
+  EXPECT_LT(sink.rows, 10000);
 }
 
 TEST(Reliability, OneHistoryRowPerState) {

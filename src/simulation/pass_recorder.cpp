@@ -1,6 +1,7 @@
 #include "pass_recorder.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <sstream>
 
@@ -164,10 +165,31 @@ void PassRecorder::rigid_turn(double t_to) {
   iqd_.setZero();
   // Nothing moves but the hub: a row every output.interval_s or every 0.1° of hub angle,
   // whichever is longer, draws the approach; near the surface, the near-surface interval.
+  // The near-surface rows can be billions (a gap wider than the approach): the loop reports its
+  // progress, and on a stop request finishes the approach at the far spacing (at most 900 rows), so
+  // the history stays whole; the pass then stops at its first step after the impact.
   const double far = std::max(options_.output_interval_s, 0.1 * M_PI / 180.0 / system_.beam.hub_motion().omega);
+  const auto started = std::chrono::steady_clock::now();
+  auto next_report = started + std::chrono::milliseconds(250);
+  bool stopping = false;
   double tk = last_t_;
-  for (;;) {
-    const double h = near_surface(tk, iq_) && options_.near_surface_interval_s > 0.0
+  for (long rows = 1;; ++rows) {
+    if ((rows & 1023) == 0 && !stopping) {
+      stopping = control_.stop && control_.stop->stop_requested();
+      const auto now = std::chrono::steady_clock::now();
+      if (control_.on_progress && now >= next_report) {
+        next_report = now + std::chrono::milliseconds(250);
+        PassProgress p;
+        p.theta_deg = system_.beam.theta(tk) * 180.0 / M_PI;
+        p.start_deg = system_.beam.theta(0.0) * 180.0 / M_PI;
+        p.end_deg = options_.end_angle_deg;
+        p.elapsed_s = std::chrono::duration<double>(now - started).count();
+        p.revolution = revolution_;
+        p.revolutions = options_.revolutions;
+        control_.on_progress(p);
+      }
+    }
+    const double h = !stopping && near_surface(tk, iq_) && options_.near_surface_interval_s > 0.0
                          ? std::min(far, options_.near_surface_interval_s)
                          : far;
     tk = next_grid_time(tk, h);
