@@ -209,9 +209,9 @@ TEST(PassFiles, TheHistoryEstimateMatchesWhatARunWrites) {
   const Case slow = build_case(load_config(std::nullopt, {"hub.speed_rpm=0.5"}));
   try {
     check_history_fits(slow, 1e8, false);
-    ADD_FAILURE() << "a 1.4 GB history was let onto 100 MB";
+    ADD_FAILURE() << "a 2.4 GB history was let onto 100 MB";
   } catch (const ConfigError& e) {
-    EXPECT_EQ(std::string(e.what()).rfind("output.interval_s = 1e-05: the history would hold at least", 0), 0u) << e.what();
+    EXPECT_EQ(std::string(e.what()).rfind("output.interval_s = 1e-05: the history would hold about", 0), 0u) << e.what();
   }
   EXPECT_NO_THROW(check_history_fits(slow, 1e10, false));
   EXPECT_NO_THROW(check_history_fits(slow, 0.0, true));  // unknown: no check

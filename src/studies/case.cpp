@@ -104,16 +104,18 @@ std::string size_text(double bytes) {
 
 HistoryEstimate check_history_fits(const Case& c, double available_bytes, bool in_memory) {
   const HistoryEstimate e = estimate_history(c);
-  const double need = in_memory ? e.min_memory_bytes : e.min_csv_bytes;
+  // The central estimate is what the run is told it will write: the check compares the same number
+  // (the lower bound let a run announced at 121 GB start on a disk with 74 GB free).
+  const double need = in_memory ? e.memory_bytes : e.csv_bytes;
   if (e.known && !e.upper_bound && available_bytes > 0 && need > available_bytes) {
     char rows[32];
-    std::snprintf(rows, sizeof rows, "%.3g", e.min_rows);
+    std::snprintf(rows, sizeof rows, "%.3g", e.rows);
     char interval[32];
     std::snprintf(interval, sizeof interval, "%g", c.options.output_interval_s);
-    throw ConfigError(std::string("output.interval_s = ") + interval + ": the history would hold at least " + rows + " rows, " +
-                      (in_memory ? "at least " + size_text(need) + " of memory, more than the " + size_text(available_bytes) +
+    throw ConfigError(std::string("output.interval_s = ") + interval + ": the history would hold about " + rows + " rows, " +
+                      (in_memory ? "about " + size_text(need) + " of memory, more than the " + size_text(available_bytes) +
                                        " available (run it with `rotbeam run -o DIR`, which streams to disk, or sample less often)"
-                                 : "at least " + size_text(need) + " in history.csv, more than the " +
+                                 : "about " + size_text(need) + " in history.csv, more than the " +
                                        size_text(available_bytes) + " free there (sample less often)"));
   }
   return e;

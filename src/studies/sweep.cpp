@@ -167,18 +167,19 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
       }() + "): " + e.what());
     }
   }
-  // The cases' histories must fit on the disk, as for one run (check_history_fits): checked before
-  // the folder is made (cases an earlier run finished are counted too: a bound).
+  // The cases' histories must fit on the disk, as for one run (check_history_fits, on the same
+  // central estimate): checked before the folder is made (cases an earlier run finished are counted
+  // too).
   {
     double need = 0.0;
     for (const Config& config : configs) {
       const HistoryEstimate e = estimate_history(build_case(config));
-      if (e.known && !e.upper_bound) need += e.min_csv_bytes;
+      if (e.known && !e.upper_bound) need += e.csv_bytes;
     }
     const double available = available_disk_bytes(options.dir);
     if (available > 0 && need > available)
       throw ConfigError("output.interval_s: the histories of the " + std::to_string(configs.size()) +
-                        " cases would take at least " + size_text(need) + ", more than the " + size_text(available) +
+                        " cases would take about " + size_text(need) + ", more than the " + size_text(available) +
                         " free where " + options.dir.string() + " goes (sample less often)");
   }
   std::optional<FolderLock> lock;  // one sweep at a time in a folder (each case folder has its own)
