@@ -20,6 +20,12 @@ TEST(SweepAxis, ListsAndRanges) {
             (std::vector<std::string>{"[0.1,0,0,0,0]", "[0,0.1,0,0,0]"}));
   EXPECT_EQ(parse_sweep_axis("simulation.scheme=\"thesis\",adaptive").values,
             (std::vector<std::string>{"\"thesis\"", "adaptive"}));
+  // Single-quoted TOML literal strings too (it split 'flex,ible' in two); an escaped quote inside a
+  // basic string does not end it.
+  EXPECT_EQ(parse_sweep_axis("initial.start='rigid','flex,ible'").values,
+            (std::vector<std::string>{"'rigid'", "'flex,ible'"}));
+  EXPECT_EQ(parse_sweep_axis("simulation.scheme=\"a\\\",b\",c").values,
+            (std::vector<std::string>{"\"a\\\",b\"", "c"}));
   for (const char* bad : {"hub.speed_rpm", "=1,2", "hub.speed_rpm=", "hub.speed_rpm=1:2", "hub.speed_rpm=1:x:3",
                           "hub.speed_rpm=1:2:0", "hub.speed_rpm=1,,2"})
     EXPECT_THROW(parse_sweep_axis(bad), ConfigError) << bad;

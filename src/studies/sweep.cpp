@@ -23,9 +23,20 @@ std::vector<std::string> split_top_level(const std::string& text) {
   std::vector<std::string> out;
   std::string cur;
   int depth = 0;
-  bool quoted = false;
+  char quote = 0;  // the quote of the TOML string being read: '"' (basic, with \ escapes) or '\'' (literal)
+  bool escaped = false;
   for (char c : text) {
-    if (c == '"') quoted = !quoted;
+    if (quote != 0) {
+      if (escaped)
+        escaped = false;
+      else if (quote == '"' && c == '\\')
+        escaped = true;
+      else if (c == quote)
+        quote = 0;
+    } else if (c == '"' || c == '\'') {
+      quote = c;
+    }
+    const bool quoted = quote != 0;
     if (!quoted && c == '[') ++depth;
     if (!quoted && c == ']') --depth;
     if (c == ',' && depth == 0 && !quoted) {
@@ -92,7 +103,7 @@ SweepAxis parse_sweep_axis(const std::string& spec) {
   const std::string rest = spec.substr(eq + 1);
   if (rest.find_first_of("\n\r") != std::string::npos)
     throw ConfigError("--vary " + axis.key + ": a value holds a line break (give the values on one line)");
-  const bool is_range = rest.find(':') != std::string::npos && rest.find_first_of("[\"") == std::string::npos;
+  const bool is_range = rest.find(':') != std::string::npos && rest.find_first_of("[\"'") == std::string::npos;
   if (is_range) {
     std::vector<std::string> parts;
     std::size_t start = 0;
