@@ -415,3 +415,22 @@ TEST(Reliability, OneHistoryRowPerState) {
   EXPECT_EQ(duplicates, 0);
   EXPECT_GE(pairs, r.summary.impacts);
 }
+
+TEST(Reliability, ADamagedCaseSummaryIsRunAgainOnResume) {
+  // A finished case whose summary.json had `"failure": {"kind": 5}` (same sizes of the listed files)
+  // ended the resume with a raw JSON type error: the case is incomplete and is run again.
+  const std::string out = fresh_dir("resume_damaged");
+  const std::string args = "sweep --set hub.speed_rpm=3000 --set simulation.end_angle_deg=0 --vary surface.friction=0.1,0.2 -o OUT";
+  ASSERT_EQ(run(args, out).status, 0);
+  const std::string summary = out + "/case-0002/summary.json";
+  nlohmann::json j = nlohmann::json::parse(std::ifstream(summary));
+  j["failure"] = {{"kind", 5}};
+  std::ofstream(summary) << j.dump(2) << "\n";
+  const Outcome o = run(args, out);
+  EXPECT_EQ(o.status, 0) << o.err;
+  std::ifstream csv(out + "/sweep.csv");
+  const std::string table((std::istreambuf_iterator<char>(csv)), {});
+  EXPECT_NE(table.find("case-0002,0.2,done,"), std::string::npos) << table;
+  EXPECT_NE(table.find("case-0001,0.1,resumed,"), std::string::npos) << table;
+  fs::remove_all(out);
+}

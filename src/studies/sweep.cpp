@@ -80,6 +80,17 @@ const Metric kMetrics[] = {{"impacts", "/impacts"},
                            {"rhs_evaluations", "/rhs_evaluations"},
                            {"wall_time_s", "/wall_time_s"}};
 
+// True when a case's summary.json holds what resuming reads as summary_json wrote it: a config
+// object, and a failure that is null or an object with the string kind and message. A damaged one
+// (edited, or written by another program) makes the case incomplete: it is run again.
+bool resumable_summary(const nlohmann::json& j) {
+  if (!j.is_object() || !j.contains("config") || !j.contains("failure")) return false;
+  const nlohmann::json& f = j["failure"];
+  if (f.is_null()) return true;
+  return f.is_object() && f.contains("kind") && f["kind"].is_string() && f.contains("message") &&
+         f["message"].is_string();
+}
+
 }  // namespace
 
 const char* sweep_status_name(SweepStatus s) {
@@ -207,7 +218,7 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
   for (std::size_t i = 0; i < report.cases.size(); ++i) {
     nlohmann::json j;
     bool finished = false;
-    if (complete_run_folder(options.dir / report.cases[i].folder, &j)) {
+    if (complete_run_folder(options.dir / report.cases[i].folder, &j) && resumable_summary(j)) {
       const bool interrupted = j["failure"].is_object() && j["failure"]["kind"] == "interrupted";
       if (!interrupted && j["config"] == configs[i].to_json()) {
         report.results[i].summary = j;
