@@ -434,3 +434,28 @@ TEST(Reliability, ADamagedCaseSummaryIsRunAgainOnResume) {
   EXPECT_NE(table.find("case-0001,0.1,resumed,"), std::string::npos) << table;
   fs::remove_all(out);
 }
+
+TEST(Reliability, ARunFolderDoesNotBecomeASweep) {
+  // A sweep into a run's folder left summary.json and sweep.csv side by side (plot drew the sweep).
+  const std::string out = fresh_dir("run_then_sweep");
+  ASSERT_EQ(run("run --set hub.speed_rpm=3000 --set simulation.end_angle_deg=0 -o OUT", out).status, 0);
+  const Outcome o = run("sweep --set hub.speed_rpm=3000 --vary surface.friction=0.1 -o OUT", out);
+  EXPECT_EQ(o.status, 2) << o.err;
+  EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
+  EXPECT_NE(o.err.find(": holds a run (summary.json), not a sweep"), std::string::npos) << o.err;
+  EXPECT_FALSE(fs::exists(out + "/sweep.csv"));
+  EXPECT_FALSE(fs::exists(out + "/case-0001"));
+  fs::remove_all(out);
+}
+
+TEST(Reliability, ASweepFolderDoesNotBecomeARun) {
+  // The reverse: a run into a sweep's folder mixed the two as well.
+  const std::string out = fresh_dir("sweep_then_run");
+  ASSERT_EQ(run("sweep --set hub.speed_rpm=3000 --set simulation.end_angle_deg=0 --vary surface.friction=0.1 -o OUT", out).status, 0);
+  const Outcome o = run("run --set hub.speed_rpm=3000 --set simulation.end_angle_deg=0 -o OUT", out);
+  EXPECT_EQ(o.status, 2) << o.err;
+  EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
+  EXPECT_NE(o.err.find(": holds a sweep (sweep.csv), not a run"), std::string::npos) << o.err;
+  EXPECT_FALSE(fs::exists(out + "/summary.json"));
+  fs::remove_all(out);
+}

@@ -277,6 +277,9 @@ bool is_temporary_suffix(const std::string& rest) {
 PassFiles::PassFiles(const std::filesystem::path& dir, int n, int history_revolutions)
     : dir_(dir), n_(n), history_revolutions_(history_revolutions) {
   namespace fs = std::filesystem;
+  // A sweep's folder (its sweep.csv) is not made a run's as well: `plot` would draw one of the two.
+  if (fs::exists(dir / "sweep.csv"))
+    throw std::runtime_error(dir.string() + ": holds a sweep (sweep.csv), not a run; give another folder");
   prepare_output_folder(dir);
   lock_ = std::make_unique<FolderLock>(dir);  // one run at a time in a folder
   try {

@@ -204,6 +204,9 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
                         " cases would take about " + size_text(need) + ", more than the " + size_text(available) +
                         " free where " + options.dir.string() + " goes (sample less often)");
   }
+  // A run's folder (its summary.json) is not made a sweep's as well: `plot` would draw one of the two.
+  if (std::filesystem::exists(options.dir / "summary.json"))
+    throw ConfigError("-o " + options.dir.string() + ": holds a run (summary.json), not a sweep; give another folder");
   std::optional<FolderLock> lock;  // one sweep at a time in a folder (each case folder has its own)
   try {
     prepare_output_folder(options.dir);
