@@ -459,3 +459,18 @@ TEST(Reliability, ASweepFolderDoesNotBecomeARun) {
   EXPECT_FALSE(fs::exists(out + "/summary.json"));
   fs::remove_all(out);
 }
+
+TEST(Reliability, AFolderThatHeldNoRunKeepsTheUsersPictures) {
+  // `run -o` deleted energy.png, animation.gif, force_bins.csv… of a folder that never held a run;
+  // they are removed only with an older run (its summary.json), whose pictures they are.
+  const std::string out = fresh_dir("users_pictures");
+  fs::create_directories(out);
+  for (const char* name : {"energy.png", "animation.gif", "revolutions.csv"}) std::ofstream(out + "/" + name) << "mine\n";
+  const std::string args = "run --set hub.speed_rpm=3000 --set simulation.end_angle_deg=0 -o OUT";
+  ASSERT_EQ(run(args, out).status, 0);
+  for (const char* name : {"energy.png", "animation.gif", "revolutions.csv"}) EXPECT_TRUE(fs::exists(out + "/" + name)) << name;
+  std::ofstream(out + "/energy.png") << "drawn of the run\n";
+  ASSERT_EQ(run(args, out).status, 0);
+  EXPECT_FALSE(fs::exists(out + "/energy.png"));
+  fs::remove_all(out);
+}

@@ -296,15 +296,21 @@ PassFiles::PassFiles(const std::filesystem::path& dir, int n, int history_revolu
            {"history.csv.tmp.", "events.csv.tmp.", "revolutions.csv.tmp.", "force_bins.csv.tmp.", "summary.json.tmp."})
         if (name.rfind(stem, 0) == 0 && is_temporary_suffix(name.substr(stem.size()))) fs::remove(e.path(), ec);
     }
-    // The pictures and animation that `rotbeam plot` and `rotbeam animate` drew of an older run in
-    // this folder describe that run: removed with it, so that no picture sits beside other data.
-    for (const char* drawn : {"normal_force_vs_y.png", "tip_path.png", "modal_coordinates.png", "energy.png",
-                              "impacts.png", "animation.gif", "animation.mp4"})
-      if (fs::is_regular_file(fs::symlink_status(dir / drawn, ec))) fs::remove(dir / drawn, ec);
+    // An older run's files (summary.json, or the history and events a killed run left) describe that
+    // run: its pictures and animation (`rotbeam plot`, `rotbeam animate`), revolutions and force bins
+    // are removed with it, so that nothing sits beside other data. In a folder without them, files
+    // of these names are the user's and stay.
+    bool older_run = false;
+    for (const char* name : {"summary.json", "history.csv", "events.csv"})
+      older_run = older_run || fs::is_regular_file(fs::symlink_status(dir / name, ec));
+    if (older_run)
+      for (const char* drawn : {"normal_force_vs_y.png", "tip_path.png", "modal_coordinates.png", "energy.png",
+                                "impacts.png", "animation.gif", "animation.mp4"})
+        if (fs::is_regular_file(fs::symlink_status(dir / drawn, ec))) fs::remove(dir / drawn, ec);
     ec.clear();
     fs::remove(dir / "summary.json", ec);  // the folder is not complete until commit()
-    if (!ec) fs::remove(dir / "revolutions.csv", ec);  // an older run's, which this run may not write
-    if (!ec) fs::remove(dir / "force_bins.csv", ec);
+    if (older_run && !ec) fs::remove(dir / "revolutions.csv", ec);  // the older run's, which this run may not write
+    if (older_run && !ec) fs::remove(dir / "force_bins.csv", ec);
     if (ec)
       throw std::runtime_error((dir / "summary.json").string() + ": cannot remove the older summary (" + ec.message() + ")");
     open(history_, "history.csv", history_header(n));
