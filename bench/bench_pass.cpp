@@ -47,6 +47,40 @@ void BM_AdaptivePass(benchmark::State& state) {
 }
 BENCHMARK(BM_AdaptivePass)->Args({5, 550})->Args({5, 3000})->Args({10, 550})->Args({10, 3000})->Unit(benchmark::kMillisecond);
 
+// The base case at the default tolerance (rtol 1e-9) for n = state.range(0) modes, variant
+// state.range(1): 0 plain Dormand–Prince on q, q̇; 1 the integrating factor (default); 2 the factor
+// with simulation.end_when_clear. History every 100 µs. n = 20 and 30 take seconds to minutes per
+// pass: one iteration each (bench/mode_scaling.py gives the whole-process medians and the errors).
+void BM_AdaptiveModes(benchmark::State& state) {
+  PassOptions opt;
+  opt.integrating_factor = state.range(1) >= 1;
+  opt.end_when_clear = state.range(1) == 2;
+  state.SetLabel(state.range(1) == 0 ? "plain" : state.range(1) == 1 ? "factor" : "factor+clear");
+  const int n = static_cast<int>(state.range(0));
+  BeamParameters p;
+  p.modes = n;
+  const ForeshorteningBeam model = make_beam(p);
+  const Plane plane = plane_at_depth(model, 0.02);
+  InitialConditions ic;
+  opt.output_interval_s = 1e-4;
+  PassSummary summary;
+  for (auto _ : state) {
+    const PassResult r = run_pass({model, plane, ContactLaw{}}, ic, opt);
+    summary = r.summary;
+    benchmark::DoNotOptimize(r.history.data());
+  }
+  state.counters["steps"] = static_cast<double>(summary.steps);
+  state.counters["rhs_evaluations"] = static_cast<double>(summary.rhs_evaluations);
+  state.counters["impacts"] = summary.impacts;
+}
+BENCHMARK(BM_AdaptiveModes)
+    ->Args({5, 0})->Args({5, 1})->Args({5, 2})
+    ->Args({10, 0})->Args({10, 1})->Args({10, 2})
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_AdaptiveModes)
+    ->Args({20, 1})->Args({20, 2})->Args({30, 2})
+    ->Unit(benchmark::kSecond)->Iterations(1);
+
 // The 80 Table 5-2 cases (default configuration otherwise: adaptive, rtol 1e-9), on `threads` threads.
 void BM_Table52Grid(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(0));
