@@ -58,7 +58,8 @@ void print_summary(const Config& config, const PassResult& r, const std::string&
   if (config.simulation.revolutions > 0) {
     if (s.steady_state.method == SteadyMethod::shooting && s.steady_state.map_evaluations > 0)
       std::cout << "  revolutions           " << s.revolutions
-                << " written: the orbit, run from the state the shooting converged to\n";
+                << " written: the orbit, run from the "
+                << (s.steady_state.reached ? "state the shooting converged to" : "best state the shooting found") << "\n";
     else
       std::cout << "  revolutions           " << s.revolutions << " complete of " << config.simulation.revolutions << "\n";
     if (std::isfinite(s.mean_hub_torque_n_m))

@@ -323,6 +323,21 @@ PassResult shooting(const System& system, const InitialConditions& initial, cons
   PassResult r = run_pass(system, orbit_start, orbit, control);
   st.map_evaluations = map.evaluations();
   const int total = warm_revolutions + map.revolutions_run() + r.summary.revolutions;
+  if (r.failure && r.failure->kind != FailureKind::interrupted) {
+    // The orbit's run starts at t = 0 from a state the search reached: its t and θ (those of the
+    // files) are named as such, and the state as what it is.
+    std::ostringstream where;
+    where << "in the run of the orbit from ";
+    if (best.converged)
+      where << "the state the shooting converged to";
+    else if (best.z.size() == 0)
+      where << "the state the warm-up ended in after its " << warm_revolutions
+            << " revolutions (no Newton step was taken: the shooting did not converge)";
+    else
+      where << "the best state Newton found (the shooting did not converge)";
+    where << "; t and θ count from that run's start: ";
+    r.failure->message = where.str() + r.failure->message;
+  }
   st.final_distance = r.failure ? best.distance : section_distance(section_state(system.beam, r.final_q, r.final_qd), z_star);
   st.reached = best.converged && !r.failure;
   st.after_revolutions = st.reached ? total : 0;
@@ -336,6 +351,7 @@ PassResult shooting(const System& system, const InitialConditions& initial, cons
     if (options.multipliers)
       note << "; " << (st.multipliers.empty() ? "multipliers not computed" : stability_words(st.multipliers));
   } else if (r.failure) {
+    if (!best.converged) note << "not reached by shooting: " << tried.str() << "; ";
     note << "not reached: the orbit's run stopped (" << r.failure->message << ")";
   } else {
     note << "not reached by shooting: " << tried.str();
