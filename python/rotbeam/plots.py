@@ -78,7 +78,7 @@ def output_target(path):
     path = Path(path)
     if path.exists() and not path.is_file():
         if path.is_dir():
-            raise IsADirectoryError(errno.EISDIR, "is a folder, not a file", str(path))
+            raise IsADirectoryError(errno.EISDIR, os.strerror(errno.EISDIR), str(path))
         return None
     return Path(os.path.realpath(path))
 
