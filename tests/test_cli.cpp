@@ -284,3 +284,31 @@ TEST(Cli, AnOutputFileThatIsALinkOrADeviceIsWrittenThrough) {
   EXPECT_TRUE(fs::is_symlink(fs::symlink_status(dir / "stdout")));
   fs::remove_all(dir);
 }
+
+// The plotting module announces that it started and the code it ends with on a pipe: a program
+// that is not the module (ROTBEAM_PYTHON=/bin/true exited 0 silently, /bin/false 1 with nothing
+// said, /bin/sh 2, read as "damaged folder") and a module that dies (a signal) are named, exit 1.
+TEST(Cli, AChildThatDidNotRunThePlottingModuleIsNamed) {
+  const std::string png = ::testing::TempDir() + "rotbeam_cli_child_" + std::to_string(getpid()) + ".png";
+  for (const char* python : {"/bin/true", "/bin/false", "/bin/sh"}) {
+    const CliRun r = run("modes --plot " + png, std::string("ROTBEAM_PYTHON=") + python);
+    EXPECT_EQ(r.status, 1) << python;
+    EXPECT_NE(r.err.find(std::string("cannot run the plotting module: ") + python + " -m rotbeam.plots did not start it"),
+              std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find(std::string("ROTBEAM_PYTHON=") + python), std::string::npos) << r.err;
+  }
+  const fs::path fake = fs::path(::testing::TempDir()) / ("rotbeam_cli_dies_" + std::to_string(getpid()));
+  for (const auto& [body, expected] : std::vector<std::pair<std::string, std::string>>{
+           {"kill -9 $$", "stopped before it finished (killed by signal 9 (SIGKILL))"},
+           {"exit 2", "stopped before it finished (exit 2)"}}) {
+    std::ofstream(fake) << "#!/bin/sh\necho started >&$ROTBEAM_RESULT_FD\n" << body << "\n";
+    fs::permissions(fake, fs::perms::owner_all);
+    const CliRun r = run("modes --plot " + png, "ROTBEAM_PYTHON=" + fake.string());
+    EXPECT_EQ(r.status, 1) << body;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find("the plotting module rotbeam.plots " + expected), std::string::npos) << r.err;
+  }
+  fs::remove(fake);
+  EXPECT_FALSE(fs::exists(png));
+}

@@ -3,6 +3,8 @@
 #include "common.hpp"
 
 #include <cerrno>
+#include <cstring>
+#include <fcntl.h>
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
@@ -52,6 +54,12 @@ class ForwardInterrupts {
   struct sigaction old_int_ {}, old_term_ {};
 };
 
+// "SIGKILL", "SIGSEGV", …: the name of a signal that ended the plotting process.
+std::string signal_name(int signal) {
+  const char* abbrev = ::sigabbrev_np(signal);
+  return abbrev ? std::string("SIG") + abbrev : "signal " + std::to_string(signal);
+}
+
 }  // namespace
 
 int run_python_module(const std::string& module, const std::vector<std::string>& args) {
@@ -73,15 +81,27 @@ int run_python_module(const std::string& module, const std::vector<std::string>&
   std::vector<char*> argv;
   for (std::string& a : argv_storage) argv.push_back(a.data());
   argv.push_back(nullptr);
+  // The module writes `started` and `result CODE` on this pipe: a program that is not the module
+  // (ROTBEAM_PYTHON=/bin/true, /bin/sh) writes nothing, and its exit code is never taken as ours.
+  int report[2] = {-1, -1};
+  if (::pipe2(report, O_CLOEXEC) != 0) {
+    print_error(std::string("cannot run the plotting module: no pipe (") + std::strerror(errno) + ")");
+    return kRuntimeFailure;
+  }
+  ::fcntl(report[0], F_SETFL, O_NONBLOCK);
   ForwardInterrupts forward;
   g_forwarded = 0;
   const pid_t pid = fork();
   if (pid == 0) {
+    ::close(report[0]);
+    ::fcntl(report[1], F_SETFD, 0);  // kept across exec
+    setenv("ROTBEAM_RESULT_FD", std::to_string(report[1]).c_str(), 1);
     setenv("PYTHONPATH", joined.c_str(), 1);
     setenv("MPLBACKEND", "Agg", 1);
     execvp(argv[0], argv.data());
     _exit(127);
   }
+  ::close(report[1]);
   g_child = pid;
   if (pid > 0 && g_forwarded != 0) ::kill(pid, g_forwarded);  // a signal between fork and here
   int status = 0;
@@ -91,18 +111,37 @@ int run_python_module(const std::string& module, const std::vector<std::string>&
     }
     if (waited < 0) status = 127 << 8;
   }
+  std::string said;
+  char buf[256];
+  for (ssize_t got; (got = ::read(report[0], buf, sizeof buf)) > 0 || (got < 0 && errno == EINTR);)
+    if (got > 0) said.append(buf, static_cast<std::size_t>(got));
+  ::close(report[0]);
+  const bool started = said.find("started\n") != std::string::npos;
+  const std::size_t at = said.find("result ");
+  int result = -1;
+  if (at != std::string::npos) result = std::atoi(said.c_str() + at + 7);
   // An interrupt that arrived after the module finished its work changes nothing.
   if (g_forwarded != 0 && !(WIFEXITED(status) && WEXITSTATUS(status) == 0)) {
     print_error("interrupted while drawing: the files written so far are whole, the rest are missing");
     return kInterrupted;
   }
-  if (pid < 0 || (WIFEXITED(status) && WEXITSTATUS(status) == 127)) {
-    print_error(std::string("cannot run the plotting module: ") + python + " -m " + module +
-                " (needs Python 3 with numpy and matplotlib, and the rotbeam package; "
-                "set ROTBEAM_PYTHON / ROTBEAM_PYTHONPATH)");
+  const std::string how = WIFSIGNALED(status) ? std::string("killed by signal ") + std::to_string(WTERMSIG(status)) +
+                                                     " (" + signal_name(WTERMSIG(status)) + ")"
+                                              : "exit " + std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1);
+  if (pid < 0 || !started) {
+    print_error(std::string("cannot run the plotting module: ") + python + " -m " + module + " did not start it (" +
+                (pid < 0 ? std::string("no process") : how) +
+                (std::getenv("ROTBEAM_PYTHON") ? std::string(", ROTBEAM_PYTHON=") + python : std::string()) +
+                "; needs Python 3 with numpy and matplotlib, and the rotbeam package; set ROTBEAM_PYTHON / "
+                "ROTBEAM_PYTHONPATH)");
     return kRuntimeFailure;
   }
-  return WIFEXITED(status) ? WEXITSTATUS(status) : kRuntimeFailure;
+  if (result < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != result) {
+    print_error("the plotting module " + module + " stopped before it finished (" + how + ")");
+    return kRuntimeFailure;
+  }
+  // The module's codes are rotbeam's (0, 1, 2 damaged input, 130); any other is a failure.
+  return result == 0 || result == 1 || result == 2 || result == kInterrupted ? result : kRuntimeFailure;
 }
 
 }  // namespace rotbeam::cli

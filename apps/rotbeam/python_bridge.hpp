@@ -9,7 +9,9 @@ namespace rotbeam::cli {
 /// Runs `PYTHON -m MODULE ARGS…` (rotbeam.plots, rotbeam.animate) with PYTHONPATH pointing at the rotbeam package: the
 /// build tree's (beside the binary), the install tree's (<prefix>/lib/python3/dist-packages), or
 /// ROTBEAM_PYTHONPATH. PYTHON is ROTBEAM_PYTHON, else the interpreter the module was built for.
-/// Returns the module's exit code (127 when it cannot start).
+/// Returns the exit code the module announced on its result pipe (0, 1, 2 or 130); 1, with one line
+/// on stderr, when PYTHON did not start the module or it stopped without announcing one (a crash, a
+/// signal): a child's own exit code is never passed on.
 int run_python_module(const std::string& module, const std::vector<std::string>& args);
 
 /// run_python_module("rotbeam.plots", args).

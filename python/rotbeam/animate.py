@@ -12,9 +12,10 @@ installed, MP4.
 """
 
 if __name__ == "__main__":
-    from rotbeam._interrupt import stop_quietly_on_interrupt
+    from rotbeam._interrupt import announce_start, stop_quietly_on_interrupt
 
     stop_quietly_on_interrupt()
+    announce_start()
 
 import argparse  # noqa: E402
 import json  # noqa: E402

@@ -23,9 +23,10 @@ import tempfile
 from pathlib import Path
 
 if __name__ == "__main__":
-    from rotbeam._interrupt import stop_quietly_on_interrupt
+    from rotbeam._interrupt import announce_start, stop_quietly_on_interrupt
 
     stop_quietly_on_interrupt()
+    announce_start()
 
 try:
     import matplotlib
@@ -38,6 +39,9 @@ except ImportError as missing:
              f"python3-numpy python3-matplotlib): {missing}")
     if __name__ == "__main__":
         print(f"rotbeam: error: {_HINT}", file=sys.stderr)
+        from rotbeam._interrupt import announce_result
+
+        announce_result(1)
         sys.exit(1)
     raise ImportError(_HINT) from None
 
@@ -845,7 +849,8 @@ def main(argv=None):
 
 def run_main(main_function):
     """sys.exit(main_function()), with standard output that cannot be written (a full disk, a
-    closed pipe) reported in one line, exit 1, as by `rotbeam` itself."""
+    closed pipe) reported in one line, exit 1, as by `rotbeam` itself; the code is announced to
+    `rotbeam` first (rotbeam._interrupt.announce_result)."""
     try:
         code = main_function()
         sys.stdout.flush()
@@ -855,6 +860,9 @@ def run_main(main_function):
         print(f"rotbeam: error: standard output: the results could not be written ({e.strerror})", file=sys.stderr)
         code = 1
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # nothing left to flush at exit
+    from rotbeam._interrupt import announce_result
+
+    announce_result(code)
     sys.exit(code)
 
 

@@ -18,9 +18,10 @@ import sys
 from pathlib import Path
 
 if __name__ == "__main__":
-    from rotbeam._interrupt import stop_quietly_on_interrupt
+    from rotbeam._interrupt import announce_start, stop_quietly_on_interrupt
 
     stop_quietly_on_interrupt()
+    announce_start()
 
 # rotbeam.plots first: where numpy or matplotlib is missing it says so in one line.
 from .plots import DEG, draw_surface, force_bins, save_figure, surface_of, surface_x  # noqa: E402
