@@ -312,3 +312,16 @@ TEST(Cli, AChildThatDidNotRunThePlottingModuleIsNamed) {
   fs::remove(fake);
   EXPECT_FALSE(fs::exists(png));
 }
+
+// A reader that leaves early (`| head -1`) is not an error: exit 0 and nothing on stderr (it died
+// by SIGPIPE, 141, once the table outgrew the pipe's buffer).
+TEST(Cli, AReaderThatLeavesEarlyIsNotAnError) {
+  const std::string base = ::testing::TempDir() + "rotbeam_cli_head_" + std::to_string(getpid());
+  const std::string cmd = "sh -c '{ " + std::string(ROTBEAM_CLI) + " modes --speeds-rpm 0:1000:100000 2>" + base +
+                          ".err; echo $? >" + base + ".status; } | head -1 >/dev/null'";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  EXPECT_EQ(slurp(base + ".status"), "0\n");
+  EXPECT_EQ(slurp(base + ".err"), "");
+  std::remove((base + ".err").c_str());
+  std::remove((base + ".status").c_str());
+}

@@ -3,15 +3,33 @@
 #include "common.hpp"
 
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <exception>
 #include <iostream>
 #include <map>
 #include <string>
+#include <poll.h>
+#include <unistd.h>
+
+namespace {
+
+// True when standard output is a pipe whose reader has gone (`rotbeam modes … | head -1`).
+bool stdout_reader_gone() {
+  struct pollfd p {};
+  p.fd = STDOUT_FILENO;
+  p.events = POLLOUT;
+  return ::poll(&p, 1, 0) == 1 && (p.revents & POLLERR) != 0;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace rotbeam::cli;
+  // A reader that stops reading (`| head -1`) is not an error: instead of dying by SIGPIPE (exit
+  // 141), the writes fail and the end below says nothing of it.
+  std::signal(SIGPIPE, SIG_IGN);
   CLI::App app{"rotbeam: a flexible filament on a spinning hub whose tip strikes and rubs a flat rigid surface\n"
                "(assumed modes, momentum-balance impacts, Lagrange-multiplier contact with Coulomb friction)"};
   app.name("rotbeam");
@@ -67,10 +85,11 @@ int main(int argc, char** argv) {
     }
     return kBadInput;
   }();
-  // Output that could not be written (a full disk, a closed pipe) is a failure, not a success,
-  // the help and the version included.
+  // Output that could not be written (a full disk, a failing device) is a failure, not a success,
+  // the help and the version included; a reader that took what it wanted and left is not.
   std::cout.flush();
   if (std::fflush(stdout) != 0 || std::ferror(stdout) || !std::cout) {
+    if (stdout_reader_gone()) return code;
     const int err = errno;
     print_error(std::string("standard output: the results could not be written (") +
                 (err != 0 ? std::strerror(err) : "write error") + ")");

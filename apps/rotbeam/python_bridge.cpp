@@ -98,6 +98,7 @@ int run_python_module(const std::string& module, const std::vector<std::string>&
     setenv("ROTBEAM_RESULT_FD", std::to_string(report[1]).c_str(), 1);
     setenv("PYTHONPATH", joined.c_str(), 1);
     setenv("MPLBACKEND", "Agg", 1);
+    ::signal(SIGPIPE, SIG_DFL);  // rotbeam ignores it; the module gets the default
     execvp(argv[0], argv.data());
     _exit(127);
   }
