@@ -53,7 +53,7 @@ BENCHMARK(BM_AdaptivePass)->Args({5, 550})->Args({5, 3000})->Args({10, 550})->Ar
 // pass: one iteration each (bench/mode_scaling.py gives the whole-process medians and the errors).
 void BM_AdaptiveModes(benchmark::State& state) {
   PassOptions opt;
-  opt.integrating_factor = state.range(1) >= 1;
+  opt.integrating_factor = state.range(1) >= 1 ? FactorUse::always : FactorUse::never;
   opt.end_when_clear = state.range(1) == 2;
   state.SetLabel(state.range(1) == 0 ? "plain" : state.range(1) == 1 ? "factor" : "factor+clear");
   const int n = static_cast<int>(state.range(0));

@@ -11,6 +11,15 @@ enum class Scheme {
 };
 const char* scheme_name(Scheme s);
 
+/// Whether the adaptive scheme integrates through the integrating factor (integrating_factor.hpp).
+enum class FactorUse {
+  automatic,  // for an undamped filament; not with damping (docs/model.md: the factor makes the damped
+              // modes' forced, slowly varying response oscillate in its variables and costs steps)
+  always,
+  never,
+};
+const char* factor_use_name(FactorUse u);
+
 /// How a run looks for the periodic steady state (SPEC §12).
 enum class SteadyMethod {
   brute_force,  // revolution after revolution until the section state stops changing
@@ -51,8 +60,8 @@ struct PassOptions {
   double max_step_s = 2e-5;           // simulation.max_step_s: upper bound on the adaptive step [s]
   double event_tolerance_s = 1e-13;   // events located to this bracket width [s]
   // simulation.integrating_factor: propagate the linear modal oscillation about q = 0 exactly and
-  // integrate only the remainder (Lawson's method, integrating_factor.hpp); false: plain DP5 on q, q̇.
-  bool integrating_factor = true;
+  // integrate only the remainder (Lawson's method, integrating_factor.hpp); never: plain DP5 on q, q̇.
+  FactorUse integrating_factor = FactorUse::automatic;
   // Both schemes.
   int max_impacts = 10000;                 // simulation.max_impacts
   double deflection_warning_ratio = 0.1;   // simulation.deflection_warning_ratio: warn past max |y_t|/L

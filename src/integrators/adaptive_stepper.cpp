@@ -73,7 +73,8 @@ public:
         pa_(n_),
         stepper_(odeint::make_dense_output(options.atol, options.rtol, options.max_step_s,
                                            odeint::runge_kutta_dopri5<State>())) {
-    if (opt_.integrating_factor) {
+    if (opt_.integrating_factor == FactorUse::always ||
+        (opt_.integrating_factor == FactorUse::automatic && !sys_.beam.damped())) {
       factor_.emplace(sys_.beam.linearization());
       highest_hz_ = factor_->highest_frequency() / (2.0 * M_PI);
       // Rebase once στ reaches 1, or after 10⁶ radians of the highest mode (the phase Ωτ keeps its digits).

@@ -9,6 +9,10 @@ std::unique_ptr<Stepper> make_stepper(const System& system, const PassOptions& o
 
 const char* scheme_name(Scheme s) { return s == Scheme::thesis ? "thesis" : "adaptive"; }
 
+const char* factor_use_name(FactorUse u) {
+  return u == FactorUse::always ? "true" : u == FactorUse::never ? "false" : "auto";
+}
+
 const char* steady_method_name(SteadyMethod m) { return m == SteadyMethod::shooting ? "shooting" : "brute_force"; }
 
 }  // namespace rotbeam

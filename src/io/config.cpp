@@ -261,7 +261,15 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
          p.config.simulation.end_when_clear = boolean(k, n);
          p.end_when_clear_node = &n;
        }},
-      {"simulation.integrating_factor", [](Parsed& p, auto& k, auto& n) { p.config.simulation.integrating_factor = boolean(k, n); }},
+      {"simulation.integrating_factor",
+       [](Parsed& p, auto& k, auto& n) {
+         if (n.is_boolean())
+           p.config.simulation.integrating_factor = *n.template value<bool>() ? FactorUse::always : FactorUse::never;
+         else if (n.is_string() && *n.template value<std::string>() == "auto")
+           p.config.simulation.integrating_factor = FactorUse::automatic;
+         else
+           fail(k, n, "must be true, false or \"auto\"");
+       }},
       {"simulation.free_step_s", [](Parsed& p, auto& k, auto& n) { p.config.simulation.free_step_s = number_in(k, n, 1e-11, 1e-3, false, false); }},
       {"simulation.contact_step_s", [](Parsed& p, auto& k, auto& n) { p.config.simulation.contact_step_s = number_in(k, n, 1e-12, 1e-4, false, false); }},
       {"simulation.fine_contact_step_s", [](Parsed& p, auto& k, auto& n) { p.config.simulation.fine_contact_step_s = number_in(k, n, 1e-13, 1e-4, false, false); }},
@@ -527,7 +535,9 @@ nlohmann::json Config::to_json() const {
                      {"rtol", sim.rtol},
                      {"atol", sim.atol},
                      {"max_step_s", sim.max_step_s},
-                     {"integrating_factor", sim.integrating_factor},
+                     {"integrating_factor", sim.integrating_factor == FactorUse::automatic
+                                                ? nlohmann::json("auto")
+                                                : nlohmann::json(sim.integrating_factor == FactorUse::always)},
                      {"end_when_clear", sim.end_when_clear},
                      {"free_step_s", sim.free_step_s},
                      {"contact_step_s", sim.contact_step_s},
