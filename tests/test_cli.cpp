@@ -325,3 +325,22 @@ TEST(Cli, AReaderThatLeavesEarlyIsNotAnError) {
   std::remove((base + ".err").c_str());
   std::remove((base + ".status").c_str());
 }
+
+// `modes --plot` killed with SIGKILL cannot remove its scratch table from TMPDIR: the next one
+// removes the tables of processes that are gone, and nothing else.
+TEST(Cli, AKilledPlotsScratchIsRemovedByTheNext) {
+  const fs::path tmp = fs::path(::testing::TempDir()) / ("rotbeam_cli_scratch_" + std::to_string(getpid()));
+  fs::remove_all(tmp);
+  fs::create_directories(tmp);
+  // A pid above the kernel's largest (4194304) is never alive.
+  std::ofstream(tmp / "rotbeam-modes-9999999-a1B2c3.csv") << "a killed run's\n";
+  for (const char* mine : {"rotbeam-modes-notes.csv", "rotbeam-modes-9999999-a1B2c3.csv.bak", "rotbeam-modes-1-abc.csv"})
+    std::ofstream(tmp / mine) << "mine\n";
+  const CliRun r = run("modes --plot " + (tmp / "c.png").string(), "TMPDIR=" + tmp.string() + " ROTBEAM_PYTHON=/bin/true");
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_FALSE(fs::exists(tmp / "rotbeam-modes-9999999-a1B2c3.csv"));
+  for (const char* mine : {"rotbeam-modes-notes.csv", "rotbeam-modes-9999999-a1B2c3.csv.bak", "rotbeam-modes-1-abc.csv"})
+    EXPECT_TRUE(fs::exists(tmp / mine)) << mine;
+  EXPECT_EQ(std::distance(fs::directory_iterator(tmp), fs::directory_iterator()), 3);
+  fs::remove_all(tmp);
+}

@@ -1,12 +1,14 @@
 #include "common.hpp"
 
 #include <atomic>
+#include <cerrno>
 #include <cctype>
 #include <cmath>
 #include <csignal>
 #include <ctime>
 #include <cstdlib>
 #include <filesystem>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <cstdio>
 #include <iostream>
@@ -94,8 +96,38 @@ ScratchFile::~ScratchFile() {
   if (!path_.empty()) std::remove(path_.c_str());
 }
 
+namespace {
+
+// Removes the scratch files `STEM-PID-XXXXXX SUFFIX` in `folder` that a process no longer alive left
+// (killed with SIGKILL, it could not remove its own). Only this user's regular files of exactly
+// that form: any other name is not ours.
+void remove_dead_scratch(const std::filesystem::path& folder, const std::string& stem, const std::string& suffix) {
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(folder, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.size() < stem.size() + 9 + suffix.size() || name.rfind(stem + "-", 0) != 0 ||
+        name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
+      continue;
+    const std::string middle = name.substr(stem.size() + 1, name.size() - stem.size() - 1 - suffix.size());
+    const std::size_t dash = middle.find('-');
+    if (dash == std::string::npos || dash == 0 || middle.size() - dash - 1 != 6 ||
+        middle.find_first_not_of("0123456789") != dash)
+      continue;
+    const long pid = std::strtol(middle.c_str(), nullptr, 10);
+    struct stat st {};
+    if (pid <= 0 || pid == ::getpid() || ::lstat(e.path().c_str(), &st) != 0 || !S_ISREG(st.st_mode) ||
+        st.st_uid != ::getuid())
+      continue;
+    if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) std::filesystem::remove(e.path(), ec);
+  }
+}
+
+}  // namespace
+
 std::string ScratchFile::create(const std::string& stem, const std::string& suffix) {
-  std::string tmpl = (std::filesystem::temp_directory_path() / (stem + "-XXXXXX" + suffix)).string();
+  const std::filesystem::path folder = std::filesystem::temp_directory_path();
+  remove_dead_scratch(folder, stem, suffix);
+  std::string tmpl = (folder / (stem + "-" + std::to_string(::getpid()) + "-XXXXXX" + suffix)).string();
   const int fd = ::mkstemps(tmpl.data(), static_cast<int>(suffix.size()));
   if (fd < 0) throw std::runtime_error(tmpl + ": cannot create a scratch file");
   ::close(fd);

@@ -81,7 +81,9 @@ private:
   std::thread ticker_;
 };
 
-/// A uniquely named file in the system's temporary folder, removed when this goes out of scope.
+/// A uniquely named file in the system's temporary folder, `STEM-PID-XXXXXX SUFFIX`, removed when
+/// this goes out of scope; create() first removes the ones of the same stem whose process is gone
+/// (killed with SIGKILL, it could not remove its own).
 class ScratchFile {
 public:
   ScratchFile() = default;
