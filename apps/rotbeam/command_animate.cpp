@@ -4,12 +4,31 @@
 #include "common.hpp"
 #include "python_bridge.hpp"
 
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <optional>
 
 namespace rotbeam::cli {
 
 namespace {
+
+// A check for a number in (0, max]: "must be a number in (0, MAX], got VALUE" (CLI11's PositiveNumber
+// stated a range from 0 with a 309-digit end, and let 1e300 through).
+CLI::Validator positive_at_most(double max) {
+  char text[48];
+  std::snprintf(text, sizeof text, "(0, %g]", max);
+  const std::string range = text;
+  return CLI::Validator(
+      [range, max](std::string& s) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(s.c_str(), &end);
+        if (s.empty() || end != s.c_str() + s.size() || !(v > 0.0) || !(v <= max))
+          return "must be a number in " + range + ", got " + s;
+        return "";
+      },
+      "in " + range);
+}
 struct AnimateOptions {
   std::string folder, output, window;
   std::optional<int> frames;
@@ -26,15 +45,15 @@ Command add_animate_command(CLI::App& app) {
                   "A .gif or .mp4 file (default: DIR/animation.gif, and DIR/animation.mp4 where ffmpeg is installed)");
   CLI::Option* frames = sub->add_option("--frames", opts->frames, "Number of frames (default 240, at most 2000)")->check(CLI::Range(2, 2000));
   sub->add_option("--frames-per-degree", opts->frames_per_degree, "Frames per degree of hub angle instead")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_at_most(1e3))
       ->excludes(frames);
   sub->add_option("--window", opts->window,
                   "FROM:TO, the hub angles shown [deg] (default: the contact region with a margin; the last revolution "
                   "of a run over many)");
   sub->add_option("--zoom", opts->zoom_mm, "Half-width of the view around the tip [mm] (default: three surface depths, at least 2.5)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_at_most(1e4));
   sub->add_option("--magnify", opts->magnify, "Draw the deflection this many times (default 1: to scale)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_at_most(1e6));
   sub->add_option("--fps", opts->fps, "Frames per second of the file (default 20)")->check(CLI::Range(0.1, 100.0));
   return [opts] {
     namespace fs = std::filesystem;
