@@ -102,7 +102,7 @@ int run_pass_command(const RunOptions& o) {
     print_summary(config, r, o.output_dir);
   if (r.failure) {
     const bool interrupted = r.failure->kind == FailureKind::interrupted;
-    const std::string where = " at t = " + std::to_string(r.failure->t) + " s, θ = " +
+    const std::string where = " at t = " + number_text(r.failure->t) + " s, θ = " +
                               fixed(r.failure->theta * 180.0 / M_PI, 4) + " deg";
     if (interrupted)
       print_error("interrupted" + where + "; results up to there are in " + o.output_dir);

@@ -252,8 +252,10 @@ bool PassRecorder::impacts_exhausted(double t) {
   const int counted = result_.summary.impacts - (revolution_ > 0 ? mark_.impacts : 0);
   if (counted < options_.max_impacts) return false;
   fail(FailureKind::impacts, t,
-       "more than " + std::to_string(options_.max_impacts) + (revolution_ > 0 ? " impacts in one revolution" : " impacts in one pass") +
-           ": impacts accumulate (raise impact.plastic_below_m_s)");
+       "more than " + std::to_string(options_.max_impacts) + (options_.max_impacts == 1 ? " impact" : " impacts") +
+           (revolution_ > 0 ? " in one revolution" : " in one pass") + " (simulation.max_impacts = " +
+           std::to_string(options_.max_impacts) +
+           "): impacts accumulate (raise simulation.max_impacts, or impact.plastic_below_m_s to end a bouncing sequence)");
   return true;
 }
 
