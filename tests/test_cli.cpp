@@ -344,3 +344,17 @@ TEST(Cli, AKilledPlotsScratchIsRemovedByTheNext) {
   EXPECT_EQ(std::distance(fs::directory_iterator(tmp), fs::directory_iterator()), 3);
   fs::remove_all(tmp);
 }
+
+// A key with a NUL or a line break in a file: shown escaped on one whole line (the NUL cut the
+// message to "hub.speed", and a line break read as a space).
+TEST(Cli, AKeyWithControlCharactersIsShownEscaped) {
+  const fs::path toml = fs::path(::testing::TempDir()) / ("rotbeam_cli_nul_key_" + std::to_string(getpid()) + ".toml");
+  for (const auto& [escape, shown] : std::vector<std::pair<std::string, std::string>>{{"\\u0000", "\\u0000"}, {"\\n", "\\u000a"}}) {
+    std::ofstream(toml) << "[hub]\n\"speed" << escape << "rpm\" = 550\n";
+    const CliRun r = run("impact " + toml.string());
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find("hub.speed" + shown + "rpm = 550: unknown key"), std::string::npos) << r.err;
+  }
+  fs::remove(toml);
+}

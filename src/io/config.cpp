@@ -83,7 +83,7 @@ std::string render(const toml::node& node) {
 }
 
 [[noreturn]] void fail(const std::string& key, const toml::node& node, const std::string& why) {
-  throw ConfigError(key + " = " + render(node) + ": " + why);
+  throw ConfigError(printable(key) + " = " + render(node) + ": " + why);
 }
 
 double as_number(const std::string& key, const toml::node& node) {
