@@ -358,3 +358,13 @@ TEST(Cli, AKeyWithControlCharactersIsShownEscaped) {
   }
   fs::remove(toml);
 }
+
+// An empty list is refused (it was taken as "not given" and the defaults ran, exit 0).
+TEST(Cli, AnEmptyListIsRefused) {
+  for (const char* args : {"modes --speeds-rpm ''", "converge --rtols ''", "converge --steps ' '", "converge --modes ''"}) {
+    const CliRun r = run(args);
+    EXPECT_EQ(r.status, 2) << args;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(": an empty list; give values, e.g. "), std::string::npos) << args << ": " << r.err;
+  }
+}

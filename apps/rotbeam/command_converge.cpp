@@ -126,9 +126,12 @@ Command add_converge_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "converge", "Rerun a case over tolerances, thesis step sizes and mode counts; compare with the tightest run");
   opts->case_options.add_to(*sub);
-  sub->add_option("--rtols", opts->rtols, "Adaptive tolerances, comma-separated (default 1e-6,1e-8,1e-10,1e-12; the smallest is the reference)");
-  sub->add_option("--steps", opts->steps, "Thesis free-flight steps [s] (contact step = step/10; default 1e-6,4e-7,2e-7,1e-7: the thesis's step, then halvings where the scheme is first order)");
-  sub->add_option("--modes", opts->modes, "Mode counts (default 3,5,8,12)");
+  sub->add_option("--rtols", opts->rtols, "Adaptive tolerances, comma-separated (default 1e-6,1e-8,1e-10,1e-12; the smallest is the reference)")
+      ->check(non_empty_list("1e-6,1e-8"));
+  sub->add_option("--steps", opts->steps, "Thesis free-flight steps [s] (contact step = step/10; default 1e-6,4e-7,2e-7,1e-7: the thesis's step, then halvings where the scheme is first order)")
+      ->check(non_empty_list("1e-6,5e-7"));
+  sub->add_option("--modes", opts->modes, "Mode counts (default 3,5,8,12)")
+      ->check(non_empty_list("3,5,8"));
   sub->add_option("--jobs", opts->jobs, "Threads (default: all cores)");
   sub->add_flag("--json", opts->json, "Print the study as JSON");
   sub->add_flag("--quiet", opts->quiet, "No progress line on stderr (shown otherwise on a terminal)");

@@ -132,7 +132,8 @@ Command add_modes_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("modes", "Natural frequencies of the spinning filament versus hub speed");
   opts->case_options.add_to(*sub);
   sub->add_option("--speeds-rpm", opts->speeds,
-                  "Speeds A:B:N (N points from A to B rpm) or one speed; default: 0, the Table 5-2 speeds and the case's speed");
+                  "Speeds A:B:N (N points from A to B rpm) or one speed; default: 0, the Table 5-2 speeds and the case's speed")
+      ->check(non_empty_list("0:3000:7 or 550"));
   sub->add_flag("--json", opts->json, "Print {\"speeds_rpm\": [...], \"frequencies_hz\": [[...], ...]}");
   sub->add_option("--csv", opts->csv_path, "Also write the table to this CSV file");
   sub->add_option("--plot", opts->plot_path, "Draw a Campbell diagram (with engine-order lines) into this PNG");

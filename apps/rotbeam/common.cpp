@@ -135,6 +135,14 @@ std::string ScratchFile::create(const std::string& stem, const std::string& suff
   return path_;
 }
 
+CLI::Validator non_empty_list(const std::string& example) {
+  return CLI::Validator(
+      [example](std::string& s) -> std::string {
+        return s.find_first_not_of(" \t") == std::string::npos ? "an empty list; give values, e.g. " + example : "";
+      },
+      "");
+}
+
 void print_error(const std::string& message) {
   std::string one_line = message;
   for (char& c : one_line)

@@ -97,6 +97,10 @@ private:
   std::string path_;
 };
 
+/// A check for a list option (--speeds-rpm, --rtols, …): an empty or blank value is refused with
+/// "an empty list; give VALUES" instead of being taken as "not given".
+CLI::Validator non_empty_list(const std::string& example);
+
 /// Prints "rotbeam: error: <message>" on one line to stderr.
 void print_error(const std::string& message);
 
