@@ -146,8 +146,10 @@ TEST(PassFiles, OneRunAtATimeInAFolderAndLeftoversOfAKilledRunAreRemoved) {
   const std::vector<std::string> users = {"history.csv.tmp.backup", "history.csv.tmp.", "events.csv.tmp.12.x",
                                           "summary.json.tmp.1 2"};
   for (const std::string& name : users) std::ofstream(dir / name) << "mine\n";
-  // The pictures an older run's `plot` and `animate` drew here describe that run: removed. Other
-  // pictures (a Campbell diagram, a user's) stay.
+  // The pictures an older run's `plot` and `animate` drew here (beside its summary.json) describe
+  // that run: removed. Other pictures (a Campbell diagram, a user's) stay; in a folder that held no
+  // run, even those of the drawn names stay (Reliability.AFolderThatHeldNoRunKeepsTheUsersPictures).
+  std::ofstream(dir / "summary.json") << "{}\n";
   const std::vector<std::string> drawn = {"tip_path.png", "energy.png", "animation.gif", "animation.mp4"};
   for (const std::string& name : drawn) std::ofstream(dir / name) << "old run\n";
   std::ofstream(dir / "campbell.png") << "mine\n";
