@@ -199,19 +199,22 @@ void PassRecorder::rigid_turn(double t_to) {
 }
 
 void PassRecorder::free_rows_within(double t, const Eigen::VectorXd& q, Stepper& stepper) {
-  const double h = options_.near_surface_interval_s;
-  if (!(h > 0.0) || !(options_.near_surface_gap_m > 0.0)) return;
-  const double gap_before = last_gap_;
-  if (!near_surface(t, q) && !(gap_before > -options_.near_surface_gap_m)) return;
-  double tk = std::max(next_near_t_, next_grid_time(last_t_, h));
-  while (tk < t) {
-    if (tk > last_t_) {
-      if (!stepper.interpolate(tk, iq_, iqd_)) return;
-      sample(tk, iq_, iqd_, Phase::free, ContactLoad{});
-    }
-    const double next = std::max(next_near_t_, next_grid_time(tk, h));
-    if (!(next > tk)) return;  // h below the resolution of t: no finer rows to give
-    tk = next;
+  // Rows inside the free step just taken, from the dense output, in time order: on the output grid
+  // (k·output.interval_s, whatever the step: a step longer than the interval loses no row), and near
+  // the surface on the finer grid of near_surface_interval_s.
+  const double h = options_.near_surface_interval_s, interval = options_.output_interval_s;
+  const double gap_before = last_gap_;  // at the step's start (near_surface below moves it to t)
+  const bool near_rows = h > 0.0 && options_.near_surface_gap_m > 0.0 &&
+                         (near_surface(t, q) || gap_before > -options_.near_surface_gap_m);
+  const bool grid_rows = interval > 0.0;
+  for (;;) {
+    const double t_grid =
+        grid_rows ? (next_sample_t_ > last_t_ ? next_sample_t_ : next_grid_time(last_t_, interval)) : INFINITY;
+    const double t_near = near_rows ? std::max(next_near_t_, next_grid_time(last_t_, h)) : INFINITY;
+    const double tk = std::min(t_grid, t_near);
+    if (!(tk < t) || !(tk > last_t_)) return;  // none left inside the step (or below t's resolution)
+    if (!stepper.interpolate(tk, iq_, iqd_)) return;
+    sample(tk, iq_, iqd_, Phase::free, ContactLoad{});
   }
 }
 

@@ -22,9 +22,10 @@ public:
   /// rows before t_to every output.interval_s or every 0.1° of hub angle, whichever is longer
   /// (near the surface, every output.near_surface_interval_s).
   void rigid_turn(double t_to);
-  /// Free flight reached t (state q) over the step `stepper` just took: while the tip is near the
-  /// surface (output.near_surface_gap_m), rows strictly inside the step at
-  /// output.near_surface_interval_s from the stepper's dense output. Call before accept(t, …).
+  /// Free flight reached t (state q) over the step `stepper` just took: rows strictly inside the
+  /// step from the stepper's dense output, on the grid k·output.interval_s and, while the tip is
+  /// near the surface (output.near_surface_gap_m), every output.near_surface_interval_s. Call
+  /// before accept(t, …). A stepper without dense output (the thesis's) gives none.
   void free_rows_within(double t, const Eigen::VectorXd& q, Stepper& stepper);
   /// An accepted point reached over a step from the previous accepted point, with the contact
   /// load at the new point and the step's contact integrals (from the stepper).
