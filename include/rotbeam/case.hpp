@@ -44,9 +44,10 @@ struct HistoryEstimate {
 };
 HistoryEstimate estimate_history(const Case& c);
 
-/// Throws ConfigError naming output.interval_s when the history a run of c certainly records (its
-/// min_rows) would not fit in `available_bytes` (of disk for history.csv when `in_memory` is false, of memory
-/// otherwise); 0 available means unknown (no check). Returns the estimate.
+/// Throws ConfigError naming output.interval_s when the history a run of c is announced to record
+/// (the central estimate, csv_bytes or memory_bytes; not when it is only an upper bound) would not fit
+/// in `available_bytes` (of disk for history.csv when `in_memory` is false, of memory otherwise);
+/// 0 available means unknown (no check). Returns the estimate.
 HistoryEstimate check_history_fits(const Case& c, double available_bytes, bool in_memory);
 
 /// "4.2 GB", "310 MB", "12 kB": a size for messages.
