@@ -12,11 +12,11 @@ using namespace rotbeam;
 
 namespace {
 
-// One pass of the base case at (modes, rpm) = state.range(0, 1), history every 100 µs.
-void pass_benchmark(benchmark::State& state, PassOptions opt) {
+// One pass of the base case at `modes` and `rpm` per iteration, history every 100 µs.
+void base_case_passes(benchmark::State& state, PassOptions opt, int modes, double rpm) {
   BeamParameters p;
-  p.modes = static_cast<int>(state.range(0));
-  p.speed_rpm = static_cast<double>(state.range(1));
+  p.modes = modes;
+  p.speed_rpm = rpm;
   const ForeshorteningBeam model = make_beam(p);
   const Plane plane = plane_at_depth(model, 0.02);
   InitialConditions ic;
@@ -31,6 +31,11 @@ void pass_benchmark(benchmark::State& state, PassOptions opt) {
   state.counters["rhs_evaluations"] = static_cast<double>(s.rhs_evaluations);
   state.counters["impacts"] = s.impacts;
   state.counters["contact_episodes"] = s.contact_episodes;
+}
+
+// One pass of the base case at (modes, rpm) = state.range(0, 1).
+void pass_benchmark(benchmark::State& state, PassOptions opt) {
+  base_case_passes(state, opt, static_cast<int>(state.range(0)), static_cast<double>(state.range(1)));
 }
 
 void BM_ThesisPass(benchmark::State& state) {
@@ -56,22 +61,7 @@ void BM_AdaptiveModes(benchmark::State& state) {
   opt.integrating_factor = state.range(1) >= 1 ? FactorUse::always : FactorUse::never;
   opt.end_when_clear = state.range(1) == 2;
   state.SetLabel(state.range(1) == 0 ? "plain" : state.range(1) == 1 ? "factor" : "factor+clear");
-  const int n = static_cast<int>(state.range(0));
-  BeamParameters p;
-  p.modes = n;
-  const ForeshorteningBeam model = make_beam(p);
-  const Plane plane = plane_at_depth(model, 0.02);
-  InitialConditions ic;
-  opt.output_interval_s = 1e-4;
-  PassSummary summary;
-  for (auto _ : state) {
-    const PassResult r = run_pass({model, plane, ContactLaw{}}, ic, opt);
-    summary = r.summary;
-    benchmark::DoNotOptimize(r.history.data());
-  }
-  state.counters["steps"] = static_cast<double>(summary.steps);
-  state.counters["rhs_evaluations"] = static_cast<double>(summary.rhs_evaluations);
-  state.counters["impacts"] = summary.impacts;
+  base_case_passes(state, opt, static_cast<int>(state.range(0)), 550.0);
 }
 BENCHMARK(BM_AdaptiveModes)
     ->Args({5, 0})->Args({5, 1})->Args({5, 2})
