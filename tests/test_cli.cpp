@@ -359,6 +359,16 @@ TEST(Cli, AKeyWithControlCharactersIsShownEscaped) {
   fs::remove(toml);
 }
 
+// A speed below the smallest normal double is a number (read as its nearest double, as TOML reads
+// it; it was "not a number"); one beyond the largest double is refused as not finite.
+TEST(Cli, ASubnormalNumberIsANumber) {
+  const CliRun tiny = run("modes --speeds-rpm 1e-320 --json");
+  EXPECT_EQ(tiny.status, 0) << tiny.err;
+  const CliRun huge = run("modes --speeds-rpm 1e999");
+  EXPECT_EQ(huge.status, 2);
+  EXPECT_NE(huge.err.find("'1e999' is not a number"), std::string::npos) << huge.err;
+}
+
 // An empty list is refused (it was taken as "not given" and the defaults ran, exit 0).
 TEST(Cli, AnEmptyListIsRefused) {
   for (const char* args : {"modes --speeds-rpm ''", "converge --rtols ''", "converge --steps ' '", "converge --modes ''"}) {
