@@ -374,7 +374,7 @@ void apply_value(toml::table& root, const std::string& key, const std::string& t
   }
   if (!root.contains(section)) root.insert(section, toml::table{});
   toml::table* sec = root[section].as_table();
-  if (!sec) throw ConfigError(section + ": must be a table");
+  if (!sec) fail(section, *root.get(section), "unknown top-level key; expected a [section]" + suggestion(section));
   if (parsed_ok)
     value_table["value"].node()->visit([&](auto&& v) { sec->insert_or_assign(name, v); });
   else
