@@ -359,6 +359,13 @@ TEST(Cli, AKeyWithControlCharactersIsShownEscaped) {
   fs::remove(toml);
 }
 
+// The depth in a summary line tells 0.999999999 from 1 (it read "100.00 %") and keeps two decimals
+// where they say it all.
+TEST(Cli, TheDepthIsShownWithTheDigitsThatTellIt) {
+  EXPECT_NE(run("impact --set surface.depth_fraction=0.999999999").out.find("depth 99.9999999 %"), std::string::npos);
+  EXPECT_NE(run("impact").out.find("depth 2.00 %"), std::string::npos);
+}
+
 // A speed below the smallest normal double is a number (read as its nearest double, as TOML reads
 // it; it was "not a number"); one beyond the largest double is refused as not finite.
 TEST(Cli, ASubnormalNumberIsANumber) {

@@ -57,7 +57,7 @@ int run_impact(const ImpactOptions& o) {
     start += "] m/s";
   }
   std::cout << "First impact: " << number_text(config.beam.speed_rpm) << " rpm, depth "
-            << fixed(100.0 * config.surface.depth_fraction, 2) << " %, " << config.beam.modes << " modes, "
+            << percent_text(config.surface.depth_fraction) << " %, " << config.beam.modes << " modes, "
             << start << "\n"
             << "  time             t       = " << fixed(r.t, 7) << " s\n"
             << "  hub angle        θ       = " << fixed(theta_deg, 4) << " deg\n"

@@ -24,7 +24,7 @@ struct RunOptions {
 void print_summary(const Config& config, const PassResult& r, const std::string& dir) {
   const PassSummary& s = r.summary;
   std::cout << "Pass: " << number_text(config.beam.speed_rpm) << " rpm, depth "
-            << fixed(100 * config.surface.depth_fraction, 2) << " %, μ = " << config.contact.friction.mu << ", "
+            << percent_text(config.surface.depth_fraction) << " %, μ = " << config.contact.friction.mu << ", "
             << config.beam.modes << " modes, " << config.initial.start << " start, " << scheme_name(s.scheme)
             << " scheme\n";
   std::cout << "  impacts               " << s.impacts << " (" << s.plastic_impacts << " plastic)\n";

@@ -192,6 +192,15 @@ std::string fixed(double v, int decimals) {
   return buf;
 }
 
+std::string percent_text(double fraction) {
+  const double percent = 100.0 * fraction;
+  const std::string two = fixed(percent, 2);
+  if (std::abs(std::stod(two) - percent) <= 1e-12 * std::abs(percent)) return two;
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.12g", percent);
+  return buf;
+}
+
 std::string number_text(double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%g", v);

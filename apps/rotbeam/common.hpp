@@ -110,6 +110,10 @@ std::string fixed(double v, int decimals);
 
 /// A number with 6 significant digits (%g), for messages.
 std::string number_text(double v);
+/// A fraction as a percentage for a summary line: two decimals ("2.00"), or as many significant
+/// digits as tell it apart when two decimals would round it onto another value (0.999999999 is
+/// "99.9999999", not "100.00").
+std::string percent_text(double fraction);
 
 /// Checks, before any work, a file the user named for an option: not a folder, in a folder that
 /// exists, and (when `suffixes` is not empty) ending in one of them. Throws ConfigError naming the
