@@ -385,3 +385,83 @@ TEST(Cli, AnEmptyListIsRefused) {
     EXPECT_NE(r.err.find(": an empty list; give values, e.g. "), std::string::npos) << args << ": " << r.err;
   }
 }
+
+// The speed column has the digits that tell its rows apart (0:1:100000 printed rows reading 0.0 …
+// 1.0, one decimal for steps of 1e-5 rpm), and keeps one decimal where that says it all.
+TEST(Cli, ModesSpeedsAreShownWithTheDigitsThatTellThemApart) {
+  const CliRun fine = run("modes --speeds-rpm 1:1.0001:3");
+  ASSERT_EQ(fine.status, 0) << fine.err;
+  for (const char* row : {"\n    1.00000 ", "\n    1.00005 ", "\n    1.00010 "})
+    EXPECT_NE(fine.out.find(row), std::string::npos) << row << "\n" << fine.out;
+  const CliRun coarse = run("modes --speeds-rpm 0:3000:4");
+  ASSERT_EQ(coarse.status, 0) << coarse.err;
+  EXPECT_NE(coarse.out.find("\n     1000.0 "), std::string::npos) << coarse.out;
+}
+
+// A pass of billions of steps is announced before it starts, naming the step key (max_step_s =
+// 1e-11 s ran for hours with only its progress line, in bare seconds). SIGINT 1 s in ends it.
+TEST(Cli, APassOfBillionsOfStepsIsAnnounced) {
+  const std::string out = ::testing::TempDir() + "rotbeam_cli_long_" + std::to_string(getpid());
+  const CliRun r = run("run --set simulation.max_step_s=1e-11 -o " + out, "timeout --preserve-status -s INT 1");
+  EXPECT_EQ(r.status, 130) << r.err;
+  EXPECT_NE(r.err.find("rotbeam: note: simulation.max_step_s = 1e-11: the pass takes at least 2.97e+09 steps (0.0297 s of motion"), std::string::npos)
+      << r.err;
+  const CliRun thesis = run("run --set simulation.scheme=\"thesis\" --set simulation.contact_step_s=1e-12 -o " + out,
+                            "timeout --preserve-status -s INT 1");
+  EXPECT_NE(thesis.err.find("rotbeam: note: simulation.contact_step_s = 1e-12: the pass may take up to about 4.91e+09 steps (0.00491 s of contact"), std::string::npos)
+      << thesis.err;
+  const CliRun base = run("run -o " + out);
+  EXPECT_EQ(base.status, 0) << base.err;
+  EXPECT_EQ(base.err.find("note"), std::string::npos) << base.err;
+  fs::remove_all(out);
+}
+
+// Paths that are not there, said as they are: a loop of symbolic links in the system's words (it
+// was "no such configuration file"), the empty path as "" (it was nothing before the colon), and a
+// folder to draw that does not exist as such (it was "neither a run folder nor a sweep folder").
+TEST(Cli, PathsThatAreNotThereAreNamedForWhatTheyAre) {
+  const fs::path dir = fs::path(::testing::TempDir()) / ("rotbeam_cli_paths_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  fs::create_symlink("loop2", dir / "loop1");
+  fs::create_symlink("loop1", dir / "loop2");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"impact " + (dir / "loop1").string(), "loop1: cannot read the configuration file (Too many levels of symbolic links)"},
+      {"impact ''", "error: \"\": no such configuration file"},
+      {"plot " + (dir / "nothere").string(), "nothere: no such folder"},
+      {"animate " + (dir / "nothere").string(), "nothere: no such folder"},
+      {"plot " + (dir / "loop1").string(), "loop1: Too many levels of symbolic links"},
+      {"plot ''", "error: \"\": no such folder"}};
+  for (const auto& [args, message] : cases) {
+    const CliRun r = run(args);
+    EXPECT_EQ(r.status, 2) << args;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << args << ": " << r.err;
+  }
+  fs::remove_all(dir);
+}
+
+// A pass whose tip goes farther from its clamp than the filament's length (a soft, heavy filament)
+// is a result outside the model, not a failure: exit 0, summary.json's validity "outside" and the
+// printed summary saying so in plain words (it was exit 0 with only a warning line). The base
+// case is at the "edge" (its warning says so), a surface 0.01 % deep "within".
+TEST(Cli, APassOutsideTheModelSaysSoAndExitsZero) {
+  const std::string out = ::testing::TempDir() + "rotbeam_cli_outside_" + std::to_string(getpid());
+  const CliRun soft = run("run --set beam.youngs_modulus_pa=1e3 --set beam.density_kg_m3=1e6 -o " + out);
+  EXPECT_EQ(soft.status, 0) << soft.err;
+  EXPECT_NE(soft.out.find("validity              OUTSIDE THE MODEL: the tip went farther from its clamp than the "
+                          "filament's length; these results are not physical"),
+            std::string::npos)
+      << soft.out;
+  std::ifstream summary(out + "/summary.json");
+  EXPECT_EQ(nlohmann::json::parse(summary)["validity"], "outside");
+  const CliRun base = run("run -o " + out);
+  EXPECT_EQ(base.status, 0) << base.err;
+  EXPECT_EQ(base.out.find("OUTSIDE THE MODEL"), std::string::npos) << base.out;
+  std::ifstream base_summary(out + "/summary.json");
+  EXPECT_EQ(nlohmann::json::parse(base_summary)["validity"], "edge");  // max |y_t|/L 0.25 in its bounces
+  const CliRun shallow = run("run --set surface.depth_fraction=0.0001 -o " + out);
+  EXPECT_EQ(shallow.status, 0) << shallow.err;
+  std::ifstream shallow_summary(out + "/summary.json");
+  EXPECT_EQ(nlohmann::json::parse(shallow_summary)["validity"], "within");  // max |y_t|/L 0.09
+  fs::remove_all(out);
+}

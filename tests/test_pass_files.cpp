@@ -222,3 +222,37 @@ TEST(PassFiles, TheHistoryEstimateMatchesWhatARunWrites) {
   EXPECT_NO_THROW(check_history_fits(slow, 1e10, false));
   EXPECT_NO_THROW(check_history_fits(slow, 0.0, true));  // unknown: no check
 }
+
+TEST(PassFiles, TheStepEstimateBoundsTheStepsARunTakes) {
+  // estimate_steps announces a long pass before it runs (the step keys' ranges cannot bound the
+  // cost). The adaptive scheme's steps are at most simulation.max_step_s, so span / max_step_s is a
+  // lower bound; with the maximum step short enough to set the steps (1 µs, the base case's free
+  // flight takes longer ones) it is within 20 % of them. The thesis scheme's is an estimate from
+  // above (its contact stretch counted whole, at the fine step when that is shorter): never below
+  // the steps taken, and within 100× of them on the base case (the fine step serves only where
+  // |λ| < fine_below_n). Without it a run of 3e9 steps started with nothing said but an ETA in seconds.
+  {
+    const Config config = load_config(std::nullopt, {"simulation.max_step_s=1e-6"});
+    const Case c = build_case(config);
+    const StepEstimate e = estimate_steps(c);
+    EXPECT_TRUE(e.at_least);
+    EXPECT_EQ(e.key, "simulation.max_step_s");
+    const PassResult r = run_case(c);
+    ASSERT_FALSE(r.failure);
+    EXPECT_LE(e.steps, r.summary.steps);
+    EXPECT_GT(e.steps, r.summary.steps / 1.2);
+  }
+  for (const std::vector<std::string>& overrides :
+       {std::vector<std::string>{"simulation.scheme=\"thesis\""},
+        std::vector<std::string>{"simulation.scheme=\"thesis\"", "simulation.fine_below_n=0"},
+        std::vector<std::string>{"simulation.scheme=\"thesis\"", "hub.speed_rpm=3000"}}) {
+    const Config config = load_config(std::nullopt, overrides);
+    const Case c = build_case(config);
+    const StepEstimate e = estimate_steps(c);
+    EXPECT_FALSE(e.at_least);
+    const PassResult r = run_case(c);
+    ASSERT_FALSE(r.failure) << overrides.back();
+    EXPECT_GE(e.steps, r.summary.steps) << overrides.back();
+    EXPECT_LT(e.steps, 100.0 * r.summary.steps) << overrides.back();
+  }
+}

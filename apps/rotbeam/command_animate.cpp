@@ -57,6 +57,9 @@ Command add_animate_command(CLI::App& app) {
   sub->add_option("--fps", opts->fps, "Frames per second of the file (default 20)")->check(CLI::Range(0.1, 100.0));
   return [opts] {
     namespace fs = std::filesystem;
+    std::error_code ec;
+    if (!fs::exists(fs::path(opts->folder), ec))  // a loop of links is not "no such folder": the system's words
+      throw ConfigError(path_text(opts->folder) + ": " + (ec ? ec.message() : std::string("no such folder")));
     if (!fs::exists(fs::path(opts->folder) / "summary.json"))
       throw ConfigError(opts->folder + ": not a run folder (no summary.json)");
     if (!opts->output.empty()) check_output_file("-o", opts->output, {".gif", ".mp4"});

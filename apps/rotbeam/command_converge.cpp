@@ -75,14 +75,12 @@ int run_converge(const ConvergeOptions& o) {
   ConvergenceStudy study;
   {
     LiveLine line(!o.quiet && isatty(STDERR_FILENO));
-    line.set([](double e) { return "  runs under way, " + fixed(e, 0) + " s elapsed"; });
+    line.set([](double e) { return "  runs under way, " + duration_text(e) + " elapsed"; });
     study = run_convergence(config, ladder, o.jobs, &interrupt_token(), [&line](const JobProgress& p) {
       // The ETA counts down from the last estimate between finished runs.
       line.set([p](double e) {
-        char buf[128];
-        std::snprintf(buf, sizeof buf, "  %zu/%zu runs, %.0f s elapsed, ETA %.0f s", p.finished, p.total, e,
-                      std::max(0.0, p.eta_s - (e - p.elapsed_s)));
-        return std::string(buf);
+        return "  " + std::to_string(p.finished) + "/" + std::to_string(p.total) + " runs, " + duration_text(e) +
+               " elapsed, ETA " + duration_text(std::max(0.0, p.eta_s - (e - p.elapsed_s)));
       });
     });
   }

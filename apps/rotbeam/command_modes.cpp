@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <iostream>
 #include <sstream>
 
@@ -54,6 +55,23 @@ std::vector<double> parse_speeds(const std::string& text) {
   std::vector<double> out;
   for (long i = 0; i < count; ++i) out.push_back(count == 1 ? a : a + (b - a) * static_cast<double>(i) / (count - 1));
   return out;
+}
+
+// The decimals of the speed column: one ("3000.0"), or as many more as it takes for every speed to
+// read back within 1e-7 of itself and for neighbouring speeds that differ to print differently
+// (0:1:100000 printed 100 000 rows reading 0.0 … 1.0 with one), at most 12.
+int speed_decimals(const std::vector<double>& speeds) {
+  const auto fits = [&](int d) {
+    for (std::size_t i = 0; i < speeds.size(); ++i) {
+      const std::string text = fixed(speeds[i], d);
+      if (std::abs(std::strtod(text.c_str(), nullptr) - speeds[i]) > 1e-7 * std::abs(speeds[i])) return false;
+      if (i > 0 && speeds[i] != speeds[i - 1] && text == fixed(speeds[i - 1], d)) return false;
+    }
+    return true;
+  };
+  int d = 1;
+  while (d < 12 && !fits(d)) ++d;
+  return d;
 }
 
 int run_modes(const ModesOptions& o) {
@@ -113,8 +131,9 @@ int run_modes(const ModesOptions& o) {
     std::cout << std::string(std::max<int>(1, 12 - static_cast<int>(head.size())), ' ') << head;
   }
   std::cout << "\n";
+  const int decimals = speed_decimals(speeds);
   for (std::size_t s = 0; s < speeds.size(); ++s) {
-    std::string sp = fixed(speeds[s], 1);
+    std::string sp = fixed(speeds[s], decimals);
     std::cout << std::string(std::max<int>(1, 11 - static_cast<int>(sp.size())), ' ') << sp;
     for (int k = 0; k < n; ++k) {
       const std::string v = fixed(f(static_cast<Eigen::Index>(s), k), 3);

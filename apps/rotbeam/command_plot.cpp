@@ -23,6 +23,9 @@ Command add_plot_command(CLI::App& app) {
   return [opts] {
     namespace fs = std::filesystem;
     const fs::path dir(opts->folder);
+    std::error_code ec;
+    if (!fs::exists(dir, ec))  // a loop of links is not "no such folder": the system's words
+      throw ConfigError(path_text(opts->folder) + ": " + (ec ? ec.message() : std::string("no such folder")));
     if (!fs::exists(dir / "summary.json") && !fs::exists(dir / "sweep.csv"))
       throw ConfigError(opts->folder + ": neither a run folder (summary.json) nor a sweep folder (sweep.csv)");
     std::vector<std::string> args = {opts->folder};

@@ -172,13 +172,6 @@ private:
   double first_impact_t_ = std::numeric_limits<double>::quiet_NaN();
 };
 
-std::string duration(double s) {
-  char buf[32];
-  if (s < 90) std::snprintf(buf, sizeof buf, "%.0f s", s);
-  else std::snprintf(buf, sizeof buf, "%.0f min %02.0f s", std::floor(s / 60), std::fmod(s, 60));
-  return buf;
-}
-
 // Bytes of the files under `dir` (0 for what cannot be read).
 double folder_bytes(const fs::path& dir) {
   double total = 0;
@@ -258,7 +251,7 @@ int run_reproduce(const ReproduceOptions& o) {
     const int threads = std::min<int>(default_threads(o.jobs), static_cast<int>(total));
     line->set([total, threads](double e) {
       return "reproduce: " + std::to_string(total) + " runs on " + std::to_string(threads) + " threads, " +
-             duration(e) + " elapsed";
+             duration_text(e) + " elapsed";
     });
     JobRunnerOptions runner;
     runner.threads = o.jobs;
@@ -270,7 +263,7 @@ int run_reproduce(const ReproduceOptions& o) {
       const double at = p.elapsed_s, eta = p.eta_s;
       line->set([=](double e) {
         return "reproduce: run " + std::to_string(finished) + "/" + std::to_string(total) + " " + name + ", " +
-               duration(e) + " elapsed, ETA " + duration(std::max(0.0, eta - (e - at)));
+               duration_text(e) + " elapsed, ETA " + duration_text(std::max(0.0, eta - (e - at)));
       });
     };
     run_jobs(
@@ -295,7 +288,7 @@ int run_reproduce(const ReproduceOptions& o) {
     return kInterrupted;
   }
   std::sort(failures.begin(), failures.end());
-  line->set([](double e) { return "reproduce: Table 5-3, " + duration(e) + " elapsed"; });
+  line->set([](double e) { return "reproduce: Table 5-3, " + duration_text(e) + " elapsed"; });
 
   // Table 5-3 (first impacts; the model choice does not affect them).
   nlohmann::json table = nlohmann::json::array();

@@ -6,6 +6,7 @@
 #include "rotbeam/pass_output.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -52,6 +53,10 @@ void print_summary(const Config& config, const PassResult& r, const std::string&
   std::cout << "  normal impulse        " << s.normal_impulse_n_s * 1e3 << " mN s\n";
   std::cout << "  friction work         " << s.friction_work_j * 1e3 << " mJ\n";
   std::cout << "  max |y_t|/L           " << fixed(s.max_tip_deflection_ratio, 4) << "\n";
+  // "edge" is said by its warning below; "outside" here, in words that cannot be missed.
+  if (s.validity == Validity::outside)
+    std::cout << "  validity              OUTSIDE THE MODEL: the tip went farther from its clamp than the filament's "
+                 "length; these results are not physical\n";
   std::cout << "  energy audit residual " << s.energy_audit_residual << "\n";
   std::cout << "  steps                 " << s.steps << " (" << s.rhs_evaluations << " RHS evaluations), "
             << fixed(s.wall_time_s, 3) << " s\n";
@@ -73,6 +78,11 @@ void print_summary(const Config& config, const PassResult& r, const std::string&
             << "force_bins.csv, summary.json\n";
 }
 
+// Passes estimated above this many steps are announced: a step costs a few microseconds at 5 modes
+// (six or seven evaluations of q̈ at 0.6 µs, docs/performance.md; 3.7 µs measured), more with more
+// modes, so an hour and more.
+constexpr double kLongPassSteps = 1e9;
+
 int run_pass_command(const RunOptions& o) {
   const Config config = o.case_options.load();
   if (o.output_dir.empty()) throw ConfigError("-o DIR: an output folder is required");
@@ -82,6 +92,17 @@ int run_pass_command(const RunOptions& o) {
   if (estimate.known && estimate.csv_bytes > 1e9 && !o.quiet)
     std::cerr << "rotbeam: note: history.csv will take " << (estimate.upper_bound ? "up to " : "about ")
               << size_text(estimate.csv_bytes) << " (output.interval_s sets its sampling)" << std::endl;
+  // The step keys' ranges cannot bound a pass's cost (config.cpp): a long one is said before it starts.
+  const StepEstimate steps = estimate_steps(c);
+  if (steps.steps > kLongPassSteps && !o.quiet) {
+    char count[32], span[32];
+    std::snprintf(count, sizeof count, "%.3g", steps.steps);
+    std::snprintf(span, sizeof span, "%.3g", steps.governed_s);
+    std::cerr << "rotbeam: note: " << steps.key << " = " << number_text(steps.step_s) << ": the pass "
+              << (steps.at_least ? "takes at least " : "may take up to about ") << count << " steps (" << span << " s of "
+              << steps.governed << " in steps of " << (steps.at_least ? "at most " : "") << number_text(steps.step_s)
+              << " s), hours at a few microseconds a step" << std::endl;
+  }
   std::unique_ptr<PassFiles> files_owner;
   try {
     files_owner = std::make_unique<PassFiles>(o.output_dir, config.beam.modes, config.simulation.history_revolutions);

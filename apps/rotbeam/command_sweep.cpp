@@ -22,13 +22,6 @@ struct SweepCommandOptions {
   bool quiet = false;
 };
 
-std::string duration(double s) {
-  char buf[32];
-  if (s < 90) std::snprintf(buf, sizeof buf, "%.0f s", s);
-  else std::snprintf(buf, sizeof buf, "%.0f min %02.0f s", std::floor(s / 60), std::fmod(s, 60));
-  return buf;
-}
-
 int run_sweep_command(const SweepCommandOptions& o) {
   if (o.vary.empty()) throw ConfigError("--vary: give at least one KEY=V1,V2,… or KEY=A:B:N");
   if (o.jobs < 0) throw ConfigError("--jobs " + std::to_string(o.jobs) + ": must be >= 0");
@@ -41,7 +34,7 @@ int run_sweep_command(const SweepCommandOptions& o) {
   options.jobs = o.jobs;
   const bool terminal = !o.quiet && isatty(STDERR_FILENO), quiet = o.quiet;
   auto line = std::make_unique<LiveLine>(terminal);
-  line->set([](double e) { return "cases under way, " + duration(e) + " elapsed"; });
+  line->set([](double e) { return "cases under way, " + duration_text(e) + " elapsed"; });
   options.on_case_finished = [terminal, quiet, &line](const SweepProgress& p) {
     if (quiet) return;
     if (terminal) {
@@ -52,15 +45,15 @@ int run_sweep_command(const SweepCommandOptions& o) {
       const double at = p.elapsed_s, eta = p.eta_s;
       line->set([=](double e) {
         return "[" + bar + "] " + std::to_string(finished) + "/" + std::to_string(total) + " cases" +
-               (failed ? ", " + std::to_string(failed) + " failed" : "") + ", " + duration(e) + " elapsed, ETA " +
-               duration(std::max(0.0, eta - (e - at)));
+               (failed ? ", " + std::to_string(failed) + " failed" : "") + ", " + duration_text(e) + " elapsed, ETA " +
+               duration_text(std::max(0.0, eta - (e - at)));
       });
     } else {
       std::string values;
       for (const std::string& ov : p.last->overrides) values += (values.empty() ? "" : ", ") + ov;
       std::fprintf(stderr, "%s %s (%s): %d/%d, ETA %s%s\n", p.last->folder.c_str(),
                    sweep_status_name(p.last_result->status), values.c_str(), p.finished, p.total,
-                   duration(p.eta_s).c_str(),
+                   duration_text(p.eta_s).c_str(),
                    p.last_result->message.empty() ? "" : (" — " + p.last_result->message).c_str());
     }
     std::fflush(stderr);

@@ -38,21 +38,21 @@ std::function<void(const PassProgress&)> PassProgressLine::callback() {
     const double done = (p.theta_deg - p.start_deg) / (p.end_deg - p.start_deg);
     const double eta = done > 0 ? p.elapsed_s * (1 - done) / done : 0.0;
     if (!p.stage.empty()) {
-      std::fprintf(stderr, "\r  %s, %d revolutions run, section distance %.2e, %.1f s elapsed   ", p.stage.c_str(),
-                   p.revolution, p.section_distance, p.elapsed_s);
+      std::fprintf(stderr, "\r  %s, %d revolutions run, section distance %.2e, %s elapsed   ", p.stage.c_str(),
+                   p.revolution, p.section_distance, duration_text(p.elapsed_s).c_str());
       std::fflush(stderr);
       shown_ = true;
       return;
     }
     if (p.revolutions > 0) {
-      std::fprintf(stderr, "\r  revolution %d of %d, section distance %.2e, %.1f s elapsed, ETA %.0f s   ", p.revolution,
-                   p.revolutions, p.section_distance, p.elapsed_s, eta);
+      std::fprintf(stderr, "\r  revolution %d of %d, section distance %.2e, %s elapsed, ETA %s   ", p.revolution,
+                   p.revolutions, p.section_distance, duration_text(p.elapsed_s).c_str(), duration_text(eta).c_str());
       std::fflush(stderr);
       shown_ = true;
       return;
     }
-    std::fprintf(stderr, "\r  θ = %.2f° of %.1f° (%.0f %%), %ld steps, %.1f s elapsed, ETA %.0f s   ", p.theta_deg,
-                 p.end_deg, 100 * done, p.steps, p.elapsed_s, eta);
+    std::fprintf(stderr, "\r  θ = %.2f° of %.1f° (%.0f %%), %ld steps, %s elapsed, ETA %s   ", p.theta_deg, p.end_deg,
+                 100 * done, p.steps, duration_text(p.elapsed_s).c_str(), duration_text(eta).c_str());
     std::fflush(stderr);
     shown_ = true;
   };
@@ -191,6 +191,19 @@ std::string fixed(double v, int decimals) {
     std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
   return buf;
 }
+
+std::string duration_text(double seconds) {
+  if (!std::isfinite(seconds)) return "unknown";
+  char buf[48];
+  const double s = std::round(std::max(0.0, seconds));
+  if (s < 90) std::snprintf(buf, sizeof buf, "%.0f s", s);
+  else if (s < 90 * 60) std::snprintf(buf, sizeof buf, "%.0f min %02.0f s", std::floor(s / 60), std::fmod(s, 60));
+  else if (s < 48 * 3600) std::snprintf(buf, sizeof buf, "%.0f h %02.0f min", std::floor(s / 3600), std::floor(std::fmod(s, 3600) / 60));
+  else std::snprintf(buf, sizeof buf, "%.0f d %02.0f h", std::floor(s / 86400), std::floor(std::fmod(s, 86400) / 3600));
+  return buf;
+}
+
+std::string path_text(const std::string& path) { return path.empty() ? "\"\"" : path; }
 
 std::string percent_text(double fraction) {
   const double percent = 100.0 * fraction;

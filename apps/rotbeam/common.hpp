@@ -108,6 +108,13 @@ void print_error(const std::string& message);
 /// |v| ≥ 1e9 or it would show no significant digit, so no number prints as a long row of digits.
 std::string fixed(double v, int decimals);
 
+/// A duration for a progress line: "42 s", "12 min 05 s", "5 h 38 min", "3 d 04 h" (20325 s read as
+/// a bare number of seconds).
+std::string duration_text(double seconds);
+
+/// A path as a message shows it: "" for the empty one (not nothing before the colon).
+std::string path_text(const std::string& path);
+
 /// A number with 6 significant digits (%g), for messages.
 std::string number_text(double v);
 /// A fraction as a percentage for a summary line: two decimals ("2.00"), or as many significant

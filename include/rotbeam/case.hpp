@@ -50,6 +50,22 @@ HistoryEstimate estimate_history(const Case& c);
 /// 0 available means unknown (no check). Returns the estimate.
 HistoryEstimate check_history_fits(const Case& c, double available_bytes, bool in_memory);
 
+/// The steps a run of the case will take, estimated before it runs, and the step key that sets
+/// most of them. The adaptive scheme's steps are at most simulation.max_step_s: it takes at least
+/// the integrated time over that (at_least). The thesis scheme's steps are fixed: free_step_s in
+/// flight; contact_step_s in contact (fine_contact_step_s instead while |λ| < fine_below_n, when it
+/// is the shorter), counted over the stretch where the undeformed tip lies beyond the surface, once
+/// per pass or revolution, which a bounce shortens: an estimate from above of the contact.
+struct StepEstimate {
+  double steps = 0;
+  bool at_least = false;
+  std::string key;             // "simulation.max_step_s", "simulation.free_step_s", …
+  double step_s = 0;           // that key's value
+  double governed_s = 0;       // the simulated time taken in steps of step_s
+  std::string governed;        // what that time is: "motion", "flight" or "contact"
+};
+StepEstimate estimate_steps(const Case& c);
+
 /// "4.2 GB", "310 MB", "12 kB": a size for messages.
 std::string size_text(double bytes);
 

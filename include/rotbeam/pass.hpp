@@ -108,6 +108,17 @@ struct SteadyState {
   std::string note;                    // how the search ended, in words
 };
 
+/// Whether a pass stayed where the model holds (docs/model.md, "Validity"): within it; at the edge of
+/// the quadratic foreshortening (max |y_t|/L above simulation.deflection_warning_ratio); or outside
+/// its geometry (the tip farther than L from its clamp: the results are not physical). A result,
+/// not a failure: the pass runs on (exit 0) unless simulation.deflection_limit_is_error.
+enum class Validity { within, edge, outside };
+
+/// "within", "edge", "outside": the summary's `validity`.
+inline const char* validity_name(Validity v) {
+  return v == Validity::within ? "within" : v == Validity::edge ? "edge" : "outside";
+}
+
 struct PassSummary {
   int impacts = 0;
   int plastic_impacts = 0;
@@ -127,6 +138,7 @@ struct PassSummary {
   double impact_loss_j = 0;         // the contact impulses' work on the tip, −(energy the impacts dissipate) ≤ 0 [J]
   double energy_change_j = 0;       // E = T + U at the end less at the start [J]
   double max_tip_deflection_ratio = 0;
+  Validity validity = Validity::within;
   double energy_audit_residual = 0;
   // simulation.end_when_clear: the angle at which the pass ended because the tip could no longer
   // reach the surface before end_angle_deg; NaN when it ran to its end angle.

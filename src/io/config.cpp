@@ -5,12 +5,16 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <cerrno>
 #include <fstream>
+#include <iterator>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <system_error>
@@ -254,7 +258,13 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
       {"simulation.rtol", [](Parsed& p, auto& k, auto& n) { p.config.simulation.rtol = number_in(k, n, 0.0, 1.0, true, true); }},
       // atol bounds the error of q [m], q̇ [m/s] and the contact integrals: above 1e-3 it bounds nothing.
       {"simulation.atol", [](Parsed& p, auto& k, auto& n) { p.config.simulation.atol = number_in(k, n, 0.0, 1e-3, true, false); }},
-      // Steps below these would take over 1e9 steps for a pass of a few centiseconds.
+      // The step keys' floors (here and free_step_s, contact_step_s, fine_contact_step_s below) keep
+      // a step far above the resolution of t at a pass's times (t + h == t is still checked at every
+      // step: step_underflow). No floor can bound a pass's cost, the integrated time over the step:
+      // at the slowest accepted speed (1e-3 rpm, a half turn in 30 000 s) the ceilings alone give
+      // 3e6 steps and the floor 1e-11 s 3e15; at 550 rpm the half turn's 0.055 s takes 5.5e9 steps
+      // of 1e-11 s. So `rotbeam run` announces a pass estimated above 1e9 steps before it starts
+      // (estimate_steps, case.hpp) and its progress line shows the time left.
       {"simulation.max_step_s", [](Parsed& p, auto& k, auto& n) { p.config.simulation.max_step_s = number_in(k, n, 1e-11, 1e-2, false, false); }},
       {"simulation.end_when_clear",
        [](Parsed& p, auto& k, auto& n) {
@@ -351,6 +361,26 @@ void apply_override(toml::table& root, const std::string& assignment) {
   apply_value(root, trimmed(assignment.substr(0, eq)), trimmed(assignment.substr(eq + 1)), "--set " + printable(assignment));
 }
 
+// Whether `text` is a TOML decimal integer (sign, digits, single underscores between digits) that
+// is beyond the 64-bit range TOML reads.
+bool wide_integer(const std::string& text) {
+  std::string digits;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if ((c == '+' || c == '-') && i == 0) {
+      if (c == '-') digits += c;
+    } else if (c >= '0' && c <= '9') {
+      digits += c;
+    } else if (!(c == '_' && i > 0 && i + 1 < text.size() && std::isdigit(static_cast<unsigned char>(text[i - 1])) &&
+                 std::isdigit(static_cast<unsigned char>(text[i + 1])))) {
+      return false;
+    }
+  }
+  if (digits.empty() || digits == "-") return false;
+  int64_t v = 0;
+  return std::from_chars(digits.data(), digits.data() + digits.size(), v).ec == std::errc::result_out_of_range;
+}
+
 // Sets `key` to the TOML value `text` (a bare word is a string). `what` names the override in errors.
 void apply_value(toml::table& root, const std::string& key, const std::string& text, const std::string& what) {
   const auto dot = key.find('.');
@@ -375,6 +405,27 @@ void apply_value(toml::table& root, const std::string& key, const std::string& t
   if (!root.contains(section)) root.insert(section, toml::table{});
   toml::table* sec = root[section].as_table();
   if (!sec) fail(section, *root.get(section), "unknown top-level key; expected a [section]" + suggestion(section));
+  if (!parsed_ok && wide_integer(text)) {
+    // An integer beyond the 64 bits TOML reads ("2**80" from Python) is a number, not a word: the
+    // key's own check is asked with the nearest 64-bit integer and its answer given with the value
+    // as written (it was "beam.modes = \"1208925819614629174706176\": must be an integer"). A key
+    // that takes a number that large gets it as a float.
+    const toml::value<int64_t> nearest(text[0] == '-' ? std::numeric_limits<int64_t>::min()
+                                                      : std::numeric_limits<int64_t>::max());
+    const auto setter = std::find_if(schema().begin(), schema().end(), [&](const auto& s) { return s.first == key; });
+    try {
+      Parsed scratch;
+      setter->second(scratch, key, nearest);
+    } catch (const ConfigError& e) {
+      const std::string said = e.what(), shown = printable(key) + " = " + render(nearest) + ": ";
+      if (said.rfind(shown, 0) != 0) throw;
+      throw ConfigError(printable(key) + " = " + text + ": " + said.substr(shown.size()));
+    }
+    std::string digits;
+    std::copy_if(text.begin(), text.end(), std::back_inserter(digits), [](char c) { return c != '_'; });
+    sec->insert_or_assign(name, std::strtod(digits.c_str(), nullptr));
+    return;
+  }
   if (parsed_ok)
     value_table["value"].node()->visit([&](auto&& v) { sec->insert_or_assign(name, v); });
   else
@@ -581,17 +632,23 @@ toml::table read_file(const std::optional<std::string>& path) {
   toml::table root;
   if (!path) return root;
   namespace fs = std::filesystem;
+  // The path as given, with "" for the empty one and its control characters escaped.
+  const std::string shown = path->empty() ? "\"\"" : printable(*path);
   std::error_code ec;
   const fs::file_status st = fs::status(*path, ec);
-  if (!fs::exists(st)) throw ConfigError(*path + ": no such configuration file");
-  if (fs::is_directory(st)) throw ConfigError(*path + ": is a folder, not a configuration file");
-  if (!fs::is_regular_file(st)) throw ConfigError(*path + ": is not a regular file (a device, a pipe or a socket)");
+  // status() reports what is not there as not_found; anything else (a loop of symbolic links, a
+  // component that is not a folder, no permission) in the system's words.
+  if (st.type() == fs::file_type::none && ec)
+    throw ConfigError(shown + ": cannot read the configuration file (" + ec.message() + ")");
+  if (!fs::exists(st)) throw ConfigError(shown + ": no such configuration file");
+  if (fs::is_directory(st)) throw ConfigError(shown + ": is a folder, not a configuration file");
+  if (!fs::is_regular_file(st)) throw ConfigError(shown + ": is not a regular file (a device, a pipe or a socket)");
   std::ifstream probe(*path);
-  if (!probe) throw ConfigError(*path + ": cannot read the configuration file (" + std::generic_category().message(errno) + ")");
+  if (!probe) throw ConfigError(shown + ": cannot read the configuration file (" + std::generic_category().message(errno) + ")");
   try {
     root = toml::parse_file(*path);
   } catch (const toml::parse_error& e) {
-    throw ConfigError(*path + ":" + std::to_string(e.source().begin.line) + ":" +
+    throw ConfigError(shown + ":" + std::to_string(e.source().begin.line) + ":" +
                       std::to_string(e.source().begin.column) + ": TOML syntax error: " + printable(std::string(e.description())));
   }
   return root;

@@ -183,6 +183,7 @@ nlohmann::json summary_json(const PassResult& result, const Config& config, cons
   j["impact_loss_j"] = s.impact_loss_j;
   j["energy_change_j"] = s.energy_change_j;
   j["max_tip_deflection_ratio"] = s.max_tip_deflection_ratio;
+  j["validity"] = validity_name(s.validity);
   j["energy_audit_residual"] = s.energy_audit_residual;
   j["mean_hub_torque_n_m"] = number_or_null(s.mean_hub_torque_n_m);
   j["mean_hub_power_w"] = number_or_null(s.mean_hub_power_w);

@@ -90,6 +90,8 @@ void PassRecorder::track(double t, const Eigen::VectorXd& q) {
     validity_breached_ = true;
     validity_ratio_ = ratio;
   }
+  if (ratio > options_.deflection_warning_ratio && result_.summary.validity == Validity::within)
+    result_.summary.validity = Validity::edge;
   if (!deflection_warned_ && ratio > options_.deflection_warning_ratio) {
     deflection_warned_ = true;
     std::ostringstream s;
@@ -102,6 +104,7 @@ void PassRecorder::track(double t, const Eigen::VectorXd& q) {
   if (!geometry_warned_ && ratio > kReachCheckRatio) {
     const double reach = tip_reach(system_.beam, q);
     if (reach > kReachLimit) {
+      result_.summary.validity = Validity::outside;
       geometry_warned_ = true;
       std::ostringstream s;
       s.precision(3);

@@ -98,6 +98,47 @@ HistoryEstimate estimate_history(const Case& c) {
   return e;
 }
 
+StepEstimate estimate_steps(const Case& c) {
+  const PassOptions& o = c.options;
+  const BeamModel& beam = *c.beam;
+  const double omega = beam.hub_motion().omega;
+  // The integrated time: every revolution, or from the start of the flexible motion (the first
+  // contact of a rigid start, whose turn up to it is not integrated) to the end angle.
+  double span_s, passes = 1.0;
+  const double theta_star = c.surface->first_contact_angle(beam.tip_radius(), beam.theta(0.0));
+  if (o.revolutions > 0) {
+    span_s = o.revolutions * 2.0 * M_PI / omega;
+    passes = o.revolutions;
+  } else {
+    const double start_s = c.initial.rigid_start && std::isfinite(theta_star) ? beam.time_at(theta_star) : 0.0;
+    span_s = std::max(0.0, beam.time_at(o.end_angle_deg * M_PI / 180.0) - start_s);
+  }
+  StepEstimate e;
+  if (o.scheme == Scheme::adaptive) {
+    e = {span_s / o.max_step_s, true, "simulation.max_step_s", o.max_step_s, span_s, "motion"};
+    return e;
+  }
+  double contact_s = 0.0;
+  if (std::isfinite(theta_star))
+    contact_s = std::min(span_s, passes * 2.0 * std::abs(std::remainder(c.surface->deepest_angle() - theta_star, 2.0 * M_PI)) / omega);
+  const bool fine = o.fine_below_n > 0.0 && o.fine_contact_step_s < o.contact_step_s;
+  const double contact_step = fine ? o.fine_contact_step_s : o.contact_step_s;
+  const double free_steps = (span_s - contact_s) / o.free_step_s, contact_steps = contact_s / contact_step;
+  e.steps = free_steps + contact_steps;
+  if (contact_steps > free_steps) {
+    e.key = fine ? "simulation.fine_contact_step_s" : "simulation.contact_step_s";
+    e.step_s = contact_step;
+    e.governed_s = contact_s;
+    e.governed = "contact";
+  } else {
+    e.key = "simulation.free_step_s";
+    e.step_s = o.free_step_s;
+    e.governed_s = span_s - contact_s;
+    e.governed = "flight";
+  }
+  return e;
+}
+
 std::string size_text(double bytes) {
   static const char* const units[] = {"B", "kB", "MB", "GB", "TB", "PB", "EB"};
   int u = 0;
