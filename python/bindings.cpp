@@ -10,7 +10,9 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <charconv>
 #include <chrono>
+#include <cstdio>
 #include <exception>
 #include <future>
 #include <optional>
@@ -23,6 +25,21 @@ namespace py = pybind11;
 using namespace rotbeam;
 
 namespace {
+
+// A number in a message as the caller wrote it: the shortest text that reads back as v (-1, not
+// -1.000000; 1e-05, not 0.000010).
+std::string shortest(double v) {
+  char buf[40];
+  return std::string(buf, std::to_chars(buf, buf + sizeof buf, v).ptr);
+}
+
+// A computed time in a message, with six significant digits as the command line gives it (a
+// failure before 1 µs read t = 0.000000 s with six fixed decimals).
+std::string significant(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
 
 py::object from_json(const nlohmann::json& j) {
   return py::module_::import("json").attr("loads")(j.dump());
@@ -133,7 +150,7 @@ py::object impact(const std::optional<std::string>& path, const Values& override
   const FirstImpactResult r = interruptible([&](const StopToken& stop) { return run_first_impact(c, {nullptr, &stop}); });
   if (r.failure)
     throw std::runtime_error(std::string("numerical failure (") + failure_name(r.failure->kind) + ") at t = " +
-                             std::to_string(r.failure->t) + " s before the first impact: " + r.failure->message);
+                             significant(r.failure->t) + " s before the first impact: " + r.failure->message);
   if (!r.found) return py::none();
   return from_json(impact_json(r, config));
 }
@@ -147,7 +164,7 @@ py::tuple modes(const std::optional<std::string>& path, const Values& overrides,
     throw ConfigError("speeds_rpm: " + std::to_string(speeds_rpm.size()) + " speeds, more than 100000");
   for (double s : speeds_rpm)
     if (!(s >= 0.0 && s <= 1e6))
-      throw ConfigError("speeds_rpm: " + std::to_string(s) + " must be in [0, 1000000] rpm");
+      throw ConfigError("speeds_rpm: " + shortest(s) + " must be in [0, 1000000] rpm");
   const Eigen::MatrixXd f = interruptible(
       [&](const StopToken& stop) { return frequencies_versus_speed(config.beam, speeds_rpm, &stop); });
   py::array_t<double> freq({static_cast<py::ssize_t>(f.rows()), static_cast<py::ssize_t>(f.cols())});

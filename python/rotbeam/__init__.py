@@ -40,18 +40,21 @@ from . import _core
 __all__ = ["run", "impact", "modes", "Result", "ConfigError", "ConfigFileNotFoundError", "config_keys"]
 
 
+_EMPTY_PATH = '""'  # how a message shows the empty path
+
+
 class ConfigFileNotFoundError(ConfigError, FileNotFoundError):
     """A configuration file that does not exist: a ConfigError with the command line's message, and a
     FileNotFoundError (errno ENOENT, filename) for code that expects one."""
 
     def __init__(self, path):
-        ConfigError.__init__(self, f"{path}: no such configuration file")
+        ConfigError.__init__(self, f"{path or _EMPTY_PATH}: no such configuration file")
         self.errno = errno.ENOENT
         self.strerror = "no such configuration file"
         self.filename = path
 
     def __str__(self):
-        return f"{self.filename}: no such configuration file"
+        return f"{self.filename or _EMPTY_PATH}: no such configuration file"
 
 
 def _toml_value(value, where):
@@ -81,6 +84,17 @@ def _toml_value(value, where):
     raise ConfigError(f"{where} = {value!r}: a {type(value).__name__} is not a configuration value")
 
 
+def _dangling(path):
+    """Whether the link at path names nothing (a loop of links is not that: the library names it)."""
+    try:
+        os.stat(path)
+    except FileNotFoundError:
+        return True
+    except OSError:
+        return False
+    return False
+
+
 def _arguments(config, overrides):
     """(path or None, [(dotted key, TOML value), …]): the keys are passed whole, never pasted into
     `key=value` text, so a key holding '=' or spaces is an unknown key, not another assignment."""
@@ -90,7 +104,7 @@ def _arguments(config, overrides):
         pass
     elif isinstance(config, (str, os.PathLike)):
         path = os.fspath(config)
-        if not os.path.exists(path):
+        if not os.path.lexists(path) or (os.path.islink(path) and _dangling(path)):
             raise ConfigFileNotFoundError(path)
     elif isinstance(config, dict):
         for section, table in config.items():

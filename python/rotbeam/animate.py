@@ -26,7 +26,7 @@ import subprocess  # noqa: E402
 import sys  # noqa: E402
 from pathlib import Path  # noqa: E402
 
-from .plots import (DamagedFolder, case_title, check_run_files, put_in_place, read_csv,  # noqa: E402
+from .plots import (DamagedFolder, case_title, put_in_place, read_csv, read_run,  # noqa: E402
                     remove_stale_temporaries, surface_of, surface_x, temporary_beside)
 
 import matplotlib.pyplot as plt  # noqa: E402
@@ -173,10 +173,7 @@ def animate(folder, output=None, frames=None, frames_per_degree=None, window=Non
     told when the history holds fewer distinct states than frames asked for (each frame is a
     recorded state, never an interpolation)."""
     folder = Path(folder)
-    check_run_files(folder)
-    summary = json.loads((folder / "summary.json").read_text())
-    history = read_csv(folder / "history.csv")
-    events = read_csv(folder / "events.csv")
+    history, events, summary = read_run(folder)  # every file checked before anything is drawn
     if not len(history.get("t_s", [])):
         raise DamagedFolder(f"{folder / 'history.csv'}: no rows to animate")
     history = with_rigid_approach(history, summary)
@@ -434,6 +431,9 @@ def main(argv=None):
     parser.add_argument("--fps", type=float, default=20.0, help="frames per second of the file (default 20)")
     args = parser.parse_args(argv)
     folder = Path(args.folder)
+    if not folder.exists():
+        print(f"rotbeam: error: {folder}: no such folder", file=sys.stderr)
+        return 2
     if not (folder / "summary.json").exists():
         print(f"rotbeam: error: {folder}: not a run folder (no summary.json)", file=sys.stderr)
         return 2

@@ -14,9 +14,11 @@ function returning its matplotlib figure (force_figure, tip_path_figure, energy_
 import argparse
 import csv
 import errno
+import io
 import json
 import math
 import os
+import re
 import shutil
 import sys
 import tempfile
@@ -147,6 +149,86 @@ def read_csv(path):
     return columns
 
 
+# What a run writes (src/io/pass_output.cpp): numbers in their shortest round-trip form
+# (std::to_chars: 0.1, -3.2e-05, 1e+20, inf, nan), the phase and the event kind as words.
+PHASES = ("free", "contact", "stick")
+EVENT_KINDS = ("impact", "lift_off", "contact_start", "contact_end", "slip_reversal", "tip_distance_rule", "warning",
+               "failure", "end", "clear")
+EVENT_COLUMNS = ("t_s", "theta_deg", "kind", "y_tip_m", "vx_before_m_s", "vx_after_m_s", "restitution", "impulse_n_s",
+                 "hub_work_j", "detail")
+EVENT_OPTIONAL = ("y_tip_m", "vx_before_m_s", "vx_after_m_s", "restitution", "impulse_n_s", "hub_work_j")
+_NUMBER = r"[-+]?(?:[0-9]+(?:\.[0-9]+)?(?:[eE][-+]?[0-9]+)?|inf|nan)"
+_NUMBER_RE = re.compile(_NUMBER)
+_COLUMN_RE = {False: re.compile(f"{_NUMBER}(?:\n{_NUMBER})*"), True: re.compile(f"(?:{_NUMBER})?(?:\n(?:{_NUMBER})?)*")}
+
+
+def history_columns(n):
+    """The columns of a history.csv of n modes, in their order."""
+    return (["t_s", "theta_deg", "phase", "x_tip_m", "y_tip_m", "gap_m", "vx_m_s", "vy_m_s", "normal_force_n",
+             "friction_force_n", "lambda_n"] + [f"q{i}_m" for i in range(1, n + 1)] +
+            [f"qd{i}_m_s" for i in range(1, n + 1)] + ["jacobi_j", "hub_torque_n_m"])
+
+
+def read_run_table(path, required, words=None, text=(), may_be_empty=(), why_required=""):
+    """A CSV file a run wrote as {column: numpy array}, read strictly: the damage a size check cannot
+    see (a NUL byte, a letter in a number, an unknown word) raises DamagedFolder naming the file, the
+    line, the column and the value. `required`: the columns it must have; `words`: {column: the
+    words allowed}; `text`: free-text columns; `may_be_empty`: numeric columns whose value may be
+    missing (NaN); every other column holds a number on every row."""
+    path = Path(path)
+    words = words or {}
+    data = path.read_bytes()
+    if b"\0" in data:
+        line = data.count(b"\n", 0, data.index(b"\0")) + 1
+        raise DamagedFolder(f"{path}: line {line}: a NUL byte")
+    try:
+        content = data.decode("utf-8")
+    except UnicodeDecodeError as e:
+        line = data.count(b"\n", 0, e.start) + 1
+        raise DamagedFolder(f"{path}: line {line}: not UTF-8 text") from None
+    reader = csv.reader(io.StringIO(content, newline=""))
+    try:
+        header = next(reader, None)
+        if not header:
+            raise DamagedFolder(f"{path}: empty (no header line)")
+        missing = [c for c in required if c not in header]
+        if missing:
+            raise DamagedFolder(f"{path}: no column {missing[0]}{why_required}")
+        doubled = [c for c in header if header.count(c) > 1]
+        if doubled:
+            raise DamagedFolder(f"{path}: the column {doubled[0]} twice")
+        rows, lines = [], []
+        for row in reader:
+            if len(row) != len(header):
+                raise DamagedFolder(f"{path}: line {reader.line_num}: {len(row)} values where the header has "
+                                    f"{len(header)}")
+            rows.append(row)
+            lines.append(reader.line_num)
+    except csv.Error as e:
+        raise DamagedFolder(f"{path}: line {reader.line_num}: not CSV ({e})") from None
+    columns = {}
+    for i, name in enumerate(header):
+        values = [r[i] for r in rows]
+        if name in text:
+            columns[name] = np.array(values, dtype=str)
+            continue
+        if name in words:
+            allowed = set(words[name])
+            for line, v in zip(lines, values):
+                if v not in allowed:
+                    raise DamagedFolder(f"{path}: line {line}, column {name}: {v!r} is not one of "
+                                        f"{', '.join(words[name])}")
+            columns[name] = np.array(values, dtype=str)
+            continue
+        empty_ok = name in may_be_empty
+        if not _COLUMN_RE[empty_ok].fullmatch("\n".join(values)):
+            for line, v in zip(lines, values):
+                if not (_NUMBER_RE.fullmatch(v) or (empty_ok and v == "")):
+                    raise DamagedFolder(f"{path}: line {line}, column {name}: {v!r} is not a number")
+        columns[name] = np.array([float(v) if v else math.nan for v in values], dtype=float)
+    return columns
+
+
 def case_title(summary):
     c = summary["config"]
     return (f"{c['hub']['speed_rpm']:g} rpm, depth {100 * c['surface']['depth_fraction']:g} %, "
@@ -157,9 +239,48 @@ class DamagedFolder(Exception):
     """A run folder whose files are not those its summary.json describes."""
 
 
+class OutputFolderError(Exception):
+    """The folder the pictures go to cannot be made (the message names it and why)."""
+
+
+def _summary_entry(summary, path, *keys):
+    """summary[keys[0]][keys[1]]…, or DamagedFolder naming summary.json and the entry."""
+    value = summary
+    for k in keys:
+        if not isinstance(value, dict) or k not in value:
+            raise DamagedFolder(f"{path}: no entry {'.'.join(keys)}")
+        value = value[k]
+    return value
+
+
+def check_summary(summary, path):
+    """Raises DamagedFolder, naming summary.json (`path`) and the entry, when an entry the pictures
+    read is missing or not of its kind: every one is checked before anything is drawn."""
+    modes = _summary_entry(summary, path, "config", "beam", "modes")
+    if isinstance(modes, bool) or not isinstance(modes, int) or not 1 <= modes <= 40:
+        raise DamagedFolder(f"{path}: config.beam.modes = {json.dumps(modes)}: not a mode count (1..40)")
+    for keys, positive in ((("config", "hub", "speed_rpm"), True), (("config", "beam", "length_m"), True),
+                           (("config", "hub", "radius_m"), False), (("config", "surface", "depth_fraction"), False),
+                           (("config", "surface", "friction"), False)):
+        v = _summary_entry(summary, path, *keys)
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or (positive and v <= 0):
+            raise DamagedFolder(f"{path}: {'.'.join(keys)} = {json.dumps(v)[:40]}: not a "
+                                f"{'positive ' if positive else ''}number")
+    residual = _summary_entry(summary, path, "energy_audit_residual")
+    if residual is not None and (isinstance(residual, bool) or not isinstance(residual, (int, float))):
+        raise DamagedFolder(f"{path}: energy_audit_residual = {json.dumps(residual)[:40]}: not a number")
+    scheme = _summary_entry(summary, path, "scheme")
+    if not isinstance(scheme, str):
+        raise DamagedFolder(f"{path}: scheme = {json.dumps(scheme)[:40]}: not a word")
+    warnings = summary.get("warnings", [])
+    if not isinstance(warnings, list) or not all(isinstance(w, str) for w in warnings):
+        raise DamagedFolder(f"{path}: warnings: not a list of lines")
+
+
 def check_run_files(folder):
-    """Raises DamagedFolder when summary.json does not parse or history.csv / events.csv are missing
-    or not the size summary.json recorded (a truncated or replaced file)."""
+    """The run's summary.json, once it is a run's summary and history.csv / events.csv are there at
+    the sizes it recorded; raises DamagedFolder otherwise (a truncated or replaced file). The
+    contents are read strictly by read_run."""
     folder = Path(folder)
     try:
         summary = json.loads((folder / "summary.json").read_text())
@@ -169,6 +290,7 @@ def check_run_files(folder):
     if not isinstance(summary, dict) or not isinstance(summary.get("config"), dict) or \
             not isinstance(files, dict) or not all(isinstance(v, dict) for v in files.values()):
         raise DamagedFolder(f"{folder / 'summary.json'}: not a rotbeam run summary (its config or files are missing)")
+    check_summary(summary, folder / "summary.json")
     for name in ("history.csv", "events.csv"):
         path = folder / name
         if not path.exists():
@@ -177,6 +299,7 @@ def check_run_files(folder):
         if recorded is not None and path.stat().st_size != recorded:
             raise DamagedFolder(f"{path}: {path.stat().st_size} bytes where summary.json records {recorded}: "
                                 "truncated or replaced")
+    return summary
 
 
 def surface_of(summary):
@@ -265,11 +388,7 @@ def force_bins(folder, h, events, summary, bin_deg=0.5):
     the last, mean force = the bin's momentum / the time the hub takes to turn through it."""
     path = Path(folder) / "force_bins.csv"
     if path.exists():
-        table = read_csv(path)
-        missing = [c for c in FORCE_BIN_COLUMNS if c not in table]
-        if missing:
-            raise ValueError(f"{path}: no column {missing[0]}")
-        return table, "force_bins.csv"
+        return read_run_table(path, FORCE_BIN_COLUMNS), "force_bins.csv"
     bin_deg = float((summary.get("binned_force") or {}).get("bin_deg") or bin_deg)
     omega = summary["config"]["hub"]["speed_rpm"] * math.pi / 30.0
     count = int(math.ceil(360.0 / bin_deg - 1e-9))
@@ -420,10 +539,19 @@ def force_figure(folder, h, events, summary, title):
 
 
 def read_run(folder):
-    """(history, events, summary) of a run folder: columns by name, and summary.json."""
+    """(history, events, summary) of a run folder: columns by name, and summary.json, all checked
+    before anything is drawn (check_run_files, then every value of history.csv, events.csv and
+    force_bins.csv read strictly). Raises DamagedFolder naming the file and what is wrong."""
     folder = Path(folder)
-    return (read_csv(folder / "history.csv"), read_csv(folder / "events.csv"),
-            json.loads((folder / "summary.json").read_text()))
+    summary = check_run_files(folder)
+    n = summary["config"]["beam"]["modes"]
+    history = read_run_table(folder / "history.csv", history_columns(n), {"phase": PHASES},
+                             why_required=f" (summary.json: config.beam.modes = {n}; the files are not of one run)")
+    events = read_run_table(folder / "events.csv", EVENT_COLUMNS, {"kind": EVENT_KINDS}, text=("detail",),
+                            may_be_empty=EVENT_OPTIONAL)
+    if (folder / "force_bins.csv").exists():
+        read_run_table(folder / "force_bins.csv", FORCE_BIN_COLUMNS)
+    return history, events, summary
 
 
 def tip_path_figure(h, events, summary, title):
@@ -573,24 +701,49 @@ def impacts_figure(h, events, summary, title):
     return fig
 
 
-def plot_run(folder, out):
-    folder, out = Path(folder), Path(out)
-    out.mkdir(parents=True, exist_ok=True)
-    h, events, summary = read_run(folder)
+def run_figures(folder, run=None):
+    """[(name, figure)] of a run folder's pictures, all drawn before any is written (run: read_run's
+    answer, when read already). Closes the ones drawn when one fails."""
+    folder = Path(folder)
+    h, events, summary = run if run is not None else read_run(folder)
     title = case_title(summary)
+    figures = []
+    try:
+        for name, draw in (("normal_force_vs_y", lambda: force_figure(folder, h, events, summary, title)),
+                           ("tip_path", lambda: tip_path_figure(h, events, summary, title)),
+                           ("modal_coordinates", lambda: modal_figure(h, events, summary, title)),
+                           ("energy", lambda: energy_figure(h, events, summary, title)),
+                           ("impacts", lambda: impacts_figure(h, events, summary, title))):
+            figures.append((name, draw()))
+    except BaseException:
+        for _, fig in figures:
+            plt.close(fig)
+        raise
+    return figures
+
+
+def save_figures(figures, out):
+    """Writes run_figures' pictures into the folder out (made here) and closes them: the paths."""
+    out = Path(out)
     written = []
-    for name, draw in (("normal_force_vs_y", lambda: force_figure(folder, h, events, summary, title)),
-                       ("tip_path", lambda: tip_path_figure(h, events, summary, title)),
-                       ("modal_coordinates", lambda: modal_figure(h, events, summary, title)),
-                       ("energy", lambda: energy_figure(h, events, summary, title)),
-                       ("impacts", lambda: impacts_figure(h, events, summary, title))):
-        fig = draw()
+    try:
         try:
+            out.mkdir(parents=True, exist_ok=True)
+        except OSError as e:
+            raise OutputFolderError(f"-o {out}: cannot create the output folder ({e.strerror or e})") from None
+        for name, fig in figures:
             written.append(out / f"{name}.png")
             save_figure(fig, written[-1])
-        finally:
+    finally:
+        for _, fig in figures:
             plt.close(fig)
     return written
+
+
+def plot_run(folder, out):
+    """The pictures of a run folder into out: the files are read and checked and every picture is
+    drawn before the folder out is made and anything is written (damaged files leave nothing)."""
+    return save_figures(run_figures(folder), out)
 
 
 def value_text(v):
@@ -704,16 +857,16 @@ def sweep_metrics_figure(table, keys, ok):
     return fig
 
 
-def sweep_force_figure(folder, table, keys, ok, folders):
+def sweep_force_figure(folder, table, keys, ok, folders, runs=None):
     """sweep_normal_force_vs_y.png: every case's sustained-contact F_n against the tip's Y; the cases
-    made of impacts alone are named, not drawn."""
+    made of impacts alone are named, not drawn. runs: {case folder: read_run's answer} read already."""
     folder = Path(folder)
     fig, ax = plt.subplots(figsize=(11, 5.5))
     where = {f: i for i, f in enumerate(table["folder"])}
     values = [tuple(table[k][where[f]] for k in keys) for f in folders]
     impacts_only = []
     for f, v, style in zip(folders, values, series_styles(values)):
-        h, _, summary = read_run(folder / f)
+        h, _, summary = runs[f] if runs and f in runs else read_run(folder / f)
         label = ", ".join(value_text(u) for u in v)
         if not plot_normal_force(h, None, summary, ax, label=label, lw=1.1, **dict(style, marker=None)):
             impacts_only.append(label)
@@ -738,27 +891,29 @@ def sweep_force_figure(folder, table, keys, ok, folders):
 
 
 def plot_sweep(folder, out, cases=False):
+    """The pictures of a sweep folder into out; every case with results is read and checked first
+    (read_run), so a damaged one is named before the folder out is made and anything is written."""
     folder, out = Path(folder), Path(out)
-    out.mkdir(parents=True, exist_ok=True)
     table, keys, ok = read_sweep(folder)
-    written = []
-    fig = sweep_metrics_figure(table, keys, ok)
-    try:
-        written.append(out / "sweep_metrics.png")
-        save_figure(fig, written[-1])
-    finally:
-        plt.close(fig)
     folders = [f for f, good in zip(table["folder"], ok) if good and (folder / f / "history.csv").exists()]
-    if folders and len(folders) <= 24:
-        fig = sweep_force_figure(folder, table, keys, ok, folders)
-        try:
-            written.append(out / "sweep_normal_force_vs_y.png")
-            save_figure(fig, written[-1])
-        finally:
-            plt.close(fig)
+    drawn = folders if folders and len(folders) <= 24 else []
+    runs = {f: read_run(folder / f) for f in drawn}
     if cases:
         for f in folders:
-            written += plot_run(folder / f, out / f)
+            if f not in runs:
+                read_run(folder / f)
+    figures = [("sweep_metrics", sweep_metrics_figure(table, keys, ok))]
+    try:
+        if drawn:
+            figures.append(("sweep_normal_force_vs_y", sweep_force_figure(folder, table, keys, ok, drawn, runs)))
+    except BaseException:
+        for _, fig in figures:
+            plt.close(fig)
+        raise
+    written = save_figures(figures, out)
+    if cases:
+        for f in folders:
+            written += save_figures(run_figures(folder / f, runs.get(f)), out / f)
     return written
 
 
@@ -804,12 +959,6 @@ def main(argv=None):
     if args.output and out.exists() and not out.is_dir():
         print(f"rotbeam: error: -o {out}: exists and is not a folder", file=sys.stderr)
         return 2
-    if args.output and not args.campbell:
-        try:
-            out.mkdir(parents=True, exist_ok=True)
-        except OSError as e:
-            print(f"rotbeam: error: -o {out}: cannot create the output folder ({e.strerror or e})", file=sys.stderr)
-            return 2
     try:
         if args.reproduce:
             from .reproduce import write_report
@@ -819,13 +968,15 @@ def main(argv=None):
         elif (folder / "sweep.csv").exists():
             written = plot_sweep(folder, out, args.cases)
         elif (folder / "summary.json").exists():
-            check_run_files(folder)
             written = plot_run(folder, out)
+        elif not folder.exists():
+            print(f"rotbeam: error: {folder}: no such folder", file=sys.stderr)
+            return 2
         else:
             print(f"rotbeam: error: {folder}: neither a run folder (summary.json) nor a sweep folder (sweep.csv)",
                   file=sys.stderr)
             return 2
-    except DamagedFolder as e:
+    except (DamagedFolder, OutputFolderError) as e:
         print(f"rotbeam: error: {e}", file=sys.stderr)
         return 2
     except OSError as e:  # before ValueError: some OSErrors are not, but say what file and why

@@ -252,3 +252,113 @@ def test_plot_names_a_damaged_file_in_one_line(tmp_path):
     code, _, err = cli("plot", str(out))
     assert code == 2
     assert err.count("\n") == 1 and "history.csv" in err and "truncated" in err, err
+
+
+@pytest.fixture(scope="module")
+def base_run(tmp_path_factory):
+    out = tmp_path_factory.mktemp("base") / "run"
+    code, _, err = cli("run", "-o", str(out), "--quiet")
+    assert code == 0, err
+    return out
+
+
+def damaged_copy(base_run, tmp_path, name, damage):
+    """A copy of the base run with one file changed in place by damage(bytes) -> bytes of the same size
+    (the check of sizes against summary.json cannot see it)."""
+    import shutil
+
+    folder = tmp_path / "damaged"
+    shutil.copytree(base_run, folder)
+    for png in folder.glob("*.png"):
+        png.unlink()
+    data = (folder / name).read_bytes()
+    changed = damage(data)
+    assert len(changed) == len(data) and changed != data
+    (folder / name).write_bytes(changed)
+    return folder
+
+
+def replace_in_line(line_number, old, new):
+    def damage(data):
+        lines = data.split(b"\n")
+        assert old in lines[line_number - 1], lines[line_number - 1]
+        lines[line_number - 1] = lines[line_number - 1].replace(old, new, 1)
+        return b"\n".join(lines)
+    return damage
+
+
+def first_line_starting(data, start):
+    return next(i + 1 for i, line in enumerate(data.split(b"\n")) if line.startswith(start))
+
+
+def first_free_line(data):
+    return next(i + 1 for i, line in enumerate(data.split(b"\n")) if b",free," in line and i > 2)
+
+
+@pytest.mark.parametrize("name,damage,said", [
+    # A NUL byte (numpy's "ufunc 'multiply' did not contain a loop" named the folder, after a picture).
+    ("history.csv", lambda d: d[:4000] + b"\0" + d[4001:], "history.csv: line {line}: a NUL byte"),
+    # A word in the phase column that is no phase (the row was silently dropped from every picture).
+    ("history.csv", lambda d: replace_in_line(first_free_line(d), b",free,", b",fr#e,")(d),
+     "history.csv: line {line}, column phase: 'fr#e' is not one of free, contact, stick"),
+    # A letter in a number (it was drawn as NaN).
+    ("history.csv", lambda d: replace_in_line(first_line_starting(d, b"0."), b"0.", b"x.")(d),
+     "history.csv: line {line}, column t_s: 'x."),
+    # summary.json's mode count changed (two pictures were written before "missing or odd entry 'q6_m'").
+    ("summary.json", lambda d: d.replace(b'"modes": 5', b'"modes": 7', 1),
+     "history.csv: no column q6_m (summary.json: config.beam.modes = 7; the files are not of one run)"),
+    ("events.csv", lambda d: replace_in_line(2, b",impact,", b",imp#ct,")(d),
+     "events.csv: line 2, column kind: 'imp#ct' is not one of impact"),
+])
+def test_plot_and_animate_name_same_size_damage_and_draw_nothing(base_run, tmp_path, name, damage, said):
+    # Damage that keeps the file's size is found by reading every value strictly: one line naming the
+    # file, the line and the value, exit 2, and nothing drawn — no picture in the run folder, and the
+    # -o folder not even made.
+    folder = damaged_copy(base_run, tmp_path, name, damage)
+    data = (folder / name).read_bytes()
+    line = data.count(b"\n", 0, data.index(b"\0")) + 1 if b"\0" in data else None
+    if line is None and "{line}" in said:
+        line = next(i + 1 for i, row in enumerate(data.split(b"\n")) if b"fr#e" in row or row.startswith(b"x."))
+    expected = said.format(line=line)
+    for args, output in ((("plot", str(folder), "-o", str(tmp_path / "pictures")), tmp_path / "pictures"),
+                         (("animate", str(folder)), None)):
+        code, _, err = cli(*args)
+        assert code == 2, err
+        assert err.count("\n") == 1 and expected in err, err
+        assert "damaged or incomplete" not in err and "ufunc" not in err, err
+        assert not list(folder.glob("*.png")) and not list(folder.glob("animation.*")), list(folder.iterdir())
+        if output is not None:
+            assert not output.exists()
+    from rotbeam import plots
+
+    with pytest.raises(plots.DamagedFolder, match="history.csv|events.csv"):
+        plots.read_run(folder)
+
+
+def test_plot_makes_its_output_folder_only_for_a_folder_it_accepts(base_run, tmp_path):
+    import shutil
+
+    folder = tmp_path / "bad"
+    shutil.copytree(base_run, folder)
+    (folder / "summary.json").write_text("{")
+    code, _, err = cli("plot", str(folder), "-o", str(tmp_path / "P"))
+    assert code == 2 and "summary.json: not valid JSON" in err, err
+    assert not (tmp_path / "P").exists()
+    code, _, err = cli("plot", str(base_run), "-o", str(tmp_path / "P"))
+    assert code == 0, err
+    assert len(list((tmp_path / "P").glob("*.png"))) == 5
+
+
+def test_numbers_in_python_errors_are_shown_as_given():
+    # -1 was shown as -1.000000; 2**80 as the quoted string "1208925819614629174706176" said to be no
+    # integer. Beyond 64 bits an integer is still a number: the key's own range is named.
+    with pytest.raises(rotbeam.ConfigError, match=r"^speeds_rpm: -1 must be in \[0, 1000000\] rpm$"):
+        rotbeam.modes(speeds_rpm=[-1])
+    with pytest.raises(rotbeam.ConfigError, match=r"^speeds_rpm: -1e-05 must be in"):
+        rotbeam.modes(speeds_rpm=[-1e-5])
+    with pytest.raises(rotbeam.ConfigError, match=r"^beam.modes = 1208925819614629174706176: must be in 1\.\.40$"):
+        rotbeam.impact(overrides={"beam.modes": 2**80})
+    with pytest.raises(rotbeam.ConfigError, match=r"^beam.modes = -1208925819614629174706176: must be in 1\.\.40$"):
+        rotbeam.impact(overrides={"beam.modes": -2**80})
+    with pytest.raises(rotbeam.ConfigError, match=r"^hub.speed_rpm = 10{30}: must be in \[0\.001, 1e\+06\]$"):
+        rotbeam.impact(overrides={"hub.speed_rpm": 10**30})
