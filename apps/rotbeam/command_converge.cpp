@@ -59,7 +59,7 @@ std::string cell(double v, int width, const char* format) {
 }
 
 int run_converge(const ConvergeOptions& o) {
-  const Config config = o.case_options.load();
+  const Config config = o.case_options.load_filament("converge");
   ConvergenceLadder ladder;
   if (!o.rtols.empty()) ladder.rtols = parse_list<double>(o.rtols, "--rtols");
   if (!o.steps.empty()) ladder.thesis_free_steps = parse_list<double>(o.steps, "--steps");

@@ -19,7 +19,7 @@ struct ImpactOptions {
 };
 
 int run_impact(const ImpactOptions& o) {
-  const Config config = o.case_options.load();
+  const Config config = o.case_options.load_filament("impact");
   install_interrupt_handlers();
   FirstImpactResult r;
   {

@@ -84,7 +84,7 @@ void print_summary(const Config& config, const PassResult& r, const std::string&
 constexpr double kLongPassSteps = 1e9;
 
 int run_pass_command(const RunOptions& o) {
-  const Config config = o.case_options.load();
+  const Config config = o.case_options.load_filament("run");
   if (o.output_dir.empty()) throw ConfigError("-o DIR: an output folder is required");
   const Case c = build_case(config);  // before the folder is touched: bad input leaves nothing behind
   // history.csv must fit on the disk it goes to.

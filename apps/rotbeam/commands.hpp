@@ -16,5 +16,6 @@ Command add_sweep_command(CLI::App& app);
 Command add_plot_command(CLI::App& app);
 Command add_animate_command(CLI::App& app);
 Command add_reproduce_command(CLI::App& app);
+Command add_brush_command(CLI::App& app);
 
 }  // namespace rotbeam::cli

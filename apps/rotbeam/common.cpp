@@ -25,6 +25,14 @@ void CaseOptions::add_to(CLI::App& app) {
 
 Config CaseOptions::load() const { return load_config(config_path, overrides); }
 
+Config CaseOptions::load_filament(const std::string& command) const {
+  Config c = load();
+  if (c.brush)
+    throw ConfigError("brush: this configuration describes a brush ([brush]); `rotbeam " + command +
+                      "` runs one filament: run the brush with `rotbeam brush`, or leave out the [brush] keys");
+  return c;
+}
+
 PassProgressLine::PassProgressLine(bool quiet) : active_(!quiet && isatty(STDERR_FILENO)) {}
 
 PassProgressLine::~PassProgressLine() {

@@ -44,6 +44,8 @@ struct CaseOptions {
   std::vector<std::string> overrides;
   void add_to(CLI::App& app);
   Config load() const;  // throws ConfigError
+  /// load(), refusing a brush's configuration (`command` runs one filament).
+  Config load_filament(const std::string& command) const;
 };
 
 /// The progress line of a pass on stderr when it is a terminal (from one second on), cleared at the

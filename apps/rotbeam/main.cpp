@@ -43,12 +43,13 @@ int main(int argc, char** argv) {
   Command plot = add_plot_command(app);
   Command animate = add_animate_command(app);
   Command reproduce = add_reproduce_command(app);
+  Command brush = add_brush_command(app);
   if (argc > 1 && argv[1][0] != '-' && std::string(argv[1]) != "modes" && std::string(argv[1]) != "impact" &&
       std::string(argv[1]) != "run" && std::string(argv[1]) != "converge" &&
-      std::string(argv[1]) != "sweep" &&
+      std::string(argv[1]) != "sweep" && std::string(argv[1]) != "brush" &&
       std::string(argv[1]) != "plot" && std::string(argv[1]) != "animate" &&
       std::string(argv[1]) != "reproduce") {
-    print_error("unknown command '" + std::string(argv[1]) + "' (commands: run, sweep, plot, animate, reproduce, converge, impact, modes; see rotbeam --help)");
+    print_error("unknown command '" + std::string(argv[1]) + "' (commands: run, sweep, brush, plot, animate, reproduce, converge, impact, modes; see rotbeam --help)");
     return kBadInput;
   }
   const int code = [&]() -> int {
@@ -73,6 +74,7 @@ int main(int argc, char** argv) {
       if (app.got_subcommand("plot")) return plot();
       if (app.got_subcommand("animate")) return animate();
       if (app.got_subcommand("reproduce")) return reproduce();
+      if (app.got_subcommand("brush")) return brush();
     } catch (const rotbeam::ConfigError& e) {
       print_error(e.what());
       return kBadInput;

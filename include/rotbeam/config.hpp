@@ -5,6 +5,7 @@
 // configuration reads into (each defined once) and reproduce the thesis's base case.
 #pragma once
 
+#include "rotbeam/brush_settings.hpp"
 #include "rotbeam/contact_law.hpp"
 #include "rotbeam/foreshortening_beam.hpp"
 #include "rotbeam/pass_options.hpp"
@@ -17,6 +18,9 @@
 #include <vector>
 
 namespace rotbeam {
+
+/// The most filaments a brush may have (brush.filaments × brush.rows).
+inline constexpr int kMaxBrushFilaments = 100000;
 
 class ConfigError : public std::runtime_error {
 public:
@@ -36,6 +40,7 @@ struct Config {
   ContactLaw contact;          // surface.friction, [impact], compat.thesis_forces, compat.restitution_speed
   InitialSettings initial;     // [initial]
   PassOptions simulation;      // [simulation], output.interval_s, compat.thesis_dcdt
+  std::optional<BrushSettings> brush;  // [brush]: present when the case is a brush (docs/brush.md)
 
   /// The resolved configuration as a JSON object with the TOML's sections and keys.
   nlohmann::json to_json() const;
@@ -54,6 +59,10 @@ Config load_config_values(const std::optional<std::string>& path,
 
 /// Same, from TOML text (for tests and the Python layer).
 Config load_config_string(const std::string& toml_text, const std::vector<std::string>& overrides);
+
+/// `config` (changed in code, as a brush changes its nominal filament for each filament) written
+/// out as its TOML would be and read again: validated as a file is. Throws ConfigError.
+Config revalidate(const Config& config);
 
 /// Every accepted key, "section.key", in documentation order.
 const std::vector<std::string>& config_keys();

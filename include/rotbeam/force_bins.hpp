@@ -2,9 +2,11 @@
 // momentum each bin receives — the impulses of the impacts in it and ∫F dt of sustained contact
 // over it — and that momentum divided by the bin's duration, the mean force over the bin. A pass
 // made of impacts alone has no contact force at any instant, but its binned force is what the
-// surface feels on average; the brush sums these over its filaments.
+// surface feels on average; the brush sums these over its filaments (docs/brush.md), phase-shifted,
+// from each filament's momentum deliveries, with a third channel: the hub's angular impulse.
 #pragma once
 
+#include <cmath>
 #include <vector>
 
 namespace rotbeam {
@@ -19,6 +21,22 @@ struct ForceBin {
   double mean_normal_force_n = 0;            // normal_impulse / the bin's duration [N]
   double mean_tangential_force_n = 0;        // tangential_impulse / the bin's duration [N]
   int impacts = 0;                           // impacts in the bin
+  double hub_angular_impulse_n_m_s = 0;      // ∫τ dt of the hub on the filament(s) over the bin [N m s]
+  double mean_hub_torque_n_m = 0;            // hub_angular_impulse / the bin's duration [N m]
+};
+
+/// What one accepted step (span_deg > 0) or one impact (span_deg = 0, impact = true) of a pass
+/// delivered, at relative hub angle from_deg (SPEC §11: (−180°, 180°], 0° at the surface's deepest
+/// point): the momentum into the surface and the hub's angular impulse on the filament, ΔH_z less the
+/// contact's angular impulse, so that ω times their sum over a revolution is its hub work exactly.
+struct MomentumDelivery {
+  double from_deg = 0;                   // [°]
+  double span_deg = 0;                   // ≥ 0 [°]
+  double normal_n_s = 0;                 // ≥ 0, into the surface [N s]
+  double tangential_n_s = 0;             // along the surface's tangent, on the surface [N s]
+  double hub_angular_impulse_n_m_s = 0;  // [N m s]
+  double along_m = NAN;                  // where the tip touched (contact or impact), along the surface's tangent [m]
+  bool impact = false;
 };
 
 /// The peaks of the binned force (summary.json's binned_force).
@@ -40,11 +58,20 @@ public:
   void add_impulse(double angle_deg, double normal_n_s, double tangential_n_s);
   /// Momentum delivered uniformly in angle from `from_deg` over `span_deg` ≥ 0 (a contact step; the
   /// span may cross ±180°) [N s].
-  void add_spread(double from_deg, double span_deg, double normal_n_s, double tangential_n_s);
+  void add_spread(double from_deg, double span_deg, double normal_n_s, double tangential_n_s,
+                  double hub_angular_n_m_s = 0);
+  /// A delivery moved by −shift_deg in angle (a filament at phase shift_deg ahead of the reference
+  /// reaches angle α when the reference is at α − shift) and scaled by `weight` (1/m for one of the m
+  /// revolutions of a period-m orbit).
+  void add(const MomentumDelivery& d, double shift_deg = 0, double weight = 1);
+  /// Adds the bins of `other` (same bin_deg and ω) bin by bin.
+  void merge(const ForceBins& other);
 
   double bin_deg() const { return bin_deg_; }
   /// The bins from the first to the last that received momentum (empty when none did).
   std::vector<ForceBin> table() const;
+  /// Every bin of the revolution, from −180° to 180°, touched or not.
+  std::vector<ForceBin> full_table() const;
   BinnedForcePeaks peaks() const;
 
 private:
@@ -54,7 +81,9 @@ private:
 
   double bin_deg_, omega_;
   int count_;
-  std::vector<double> normal_, tangential_;
+  ForceBin bin(int k) const;
+
+  std::vector<double> normal_, tangential_, hub_;
   std::vector<int> impacts_;
   std::vector<char> touched_;
 };

@@ -170,6 +170,12 @@ public:
   virtual void event(const PassEvent& event) = 0;
   /// A revolution ended (its rows and events came before). Runs of one pass never call it.
   virtual void revolution(const RevolutionRecord&) {}
+  /// Whether the sink wants delivery() (it costs the angular momentum at every accepted step).
+  virtual bool wants_deliveries() const { return false; }
+  /// What an accepted step or an impact delivered (force_bins.hpp), in order: those between two
+  /// revolution() calls are that revolution's, and ω times their hub angular impulses sums to its
+  /// hub_work_j.
+  virtual void delivery(const MomentumDelivery&) {}
 };
 
 struct PassResult {

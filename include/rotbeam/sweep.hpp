@@ -68,6 +68,7 @@ struct SweepReport {
   std::vector<SweepCase> cases;
   std::vector<SweepCaseResult> results;
   int ran = 0, resumed = 0, failed = 0, errors = 0, interrupted = 0;
+  bool brush = false;  // the cases are brushes (docs/brush.md): sweep.csv has the brush's columns
 };
 
 /// Validates every case's configuration first (a bad key or value stops before anything runs:
@@ -76,7 +77,7 @@ struct SweepReport {
 /// the end (or when interrupted), `dir/sweep.csv` atomically.
 SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& options);
 
-/// sweep.csv: case, folder, the axes' keys, status, the summary metrics, message.
+/// sweep.csv: case, folder, the axes' keys, status, the summary metrics (a run's, or a brush's), message.
 std::string sweep_csv(const SweepReport& report);
 
 }  // namespace rotbeam

@@ -157,7 +157,16 @@ struct Parsed {
   const toml::node* revolutions_node = nullptr;
   const toml::node* method_node = nullptr;
   const toml::node* end_when_clear_node = nullptr;
+  const toml::node* until_steady_node = nullptr;
+  const toml::node* filaments_node = nullptr;
+  const toml::node* rows_node = nullptr;
 };
+
+// brush.KEY: the first brush key met makes the case a brush (docs/brush.md).
+BrushSettings& brush_of(Parsed& p) {
+  if (!p.config.brush) p.config.brush.emplace();
+  return *p.config.brush;
+}
 
 using Setter = std::function<void(Parsed&, const std::string&, const toml::node&)>;
 
@@ -246,7 +255,11 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
          p.config.simulation.revolutions = integer_in(k, n, 1, 10000000);
          p.revolutions_node = &n;
        }},
-      {"simulation.until_steady", [](Parsed& p, auto& k, auto& n) { p.config.simulation.until_steady = boolean(k, n); }},
+      {"simulation.until_steady",
+       [](Parsed& p, auto& k, auto& n) {
+         p.config.simulation.until_steady = boolean(k, n);
+         p.until_steady_node = &n;
+       }},
       {"simulation.steady_tolerance", [](Parsed& p, auto& k, auto& n) { p.config.simulation.steady_tolerance = number_in(k, n, 0.0, 1.0, true, true); }},
       {"simulation.multipliers", [](Parsed& p, auto& k, auto& n) { p.config.simulation.multipliers = boolean(k, n); }},
       {"simulation.steady_method",
@@ -311,6 +324,27 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
          } else {
            fail(k, n, "must be a whole number of revolutions (at least 1) or \"all\"");
          }
+       }},
+      // A brush (docs/brush.md). Up to kMaxBrushFilaments filaments in all; the scatters are relative
+      // standard deviations, at most 0.3 so that the ±3σ draws kept stay positive.
+      {"brush.filaments",
+       [](Parsed& p, auto& k, auto& n) {
+         brush_of(p).filaments = integer_in(k, n, 1, kMaxBrushFilaments);
+         p.filaments_node = &n;
+       }},
+      {"brush.rows",
+       [](Parsed& p, auto& k, auto& n) {
+         brush_of(p).rows = integer_in(k, n, 1, 1000);
+         p.rows_node = &n;
+       }},
+      {"brush.row_phase_deg", [](Parsed& p, auto& k, auto& n) { brush_of(p).row_phase_deg = number_in(k, n, -360.0, 360.0, false, false); }},
+      {"brush.phase_jitter_deg", [](Parsed& p, auto& k, auto& n) { brush_of(p).phase_jitter_deg = number_in(k, n, 0.0, 180.0, false, false); }},
+      {"brush.length_scatter", [](Parsed& p, auto& k, auto& n) { brush_of(p).length_scatter = number_in(k, n, 0.0, 0.3, false, false); }},
+      {"brush.diameter_scatter", [](Parsed& p, auto& k, auto& n) { brush_of(p).diameter_scatter = number_in(k, n, 0.0, 0.3, false, false); }},
+      {"brush.seed",
+       [](Parsed& p, auto& k, auto& n) {
+         if (!n.is_integer() || *n.template value<int64_t>() < 0) fail(k, n, "must be a whole number >= 0");
+         brush_of(p).seed = static_cast<std::uint64_t>(*n.template value<int64_t>());
        }},
       {"compat.thesis_forces", [](Parsed& p, auto& k, auto& n) { p.config.contact.friction.thesis_forces = boolean(k, n); }},
       {"compat.thesis_dcdt", [](Parsed& p, auto& k, auto& n) { p.config.simulation.thesis_dcdt = boolean(k, n); }},
@@ -507,6 +541,18 @@ Config validate(toml::table& root) {
   if (sim.steady_method == SteadyMethod::shooting && !sim.until_steady)
     fail("simulation.steady_method", *p.method_node,
          "shooting searches for the steady state: it needs simulation.until_steady = true");
+  if (c.brush) {
+    // Every filament of a brush runs to its periodic steady state.
+    if (p.until_steady_node && !sim.until_steady)
+      fail("simulation.until_steady", *p.until_steady_node,
+           "a brush's filaments run to their periodic steady state: leave it out or set it true");
+    sim.until_steady = true;
+    const long long total = static_cast<long long>(c.brush->filaments) * c.brush->rows;
+    if (total > kMaxBrushFilaments)
+      fail("brush.rows", p.rows_node ? *p.rows_node : *p.filaments_node,
+           "brush.filaments × brush.rows = " + std::to_string(total) + " filaments, more than " +
+               std::to_string(kMaxBrushFilaments));
+  }
   if (sim.until_steady && !p.revolutions_node) sim.revolutions = kDefaultSteadyRevolutionCap;
   // The start the configuration describes must be possible (checked through the beam and surface).
   ForeshorteningBeam beam;
@@ -610,6 +656,14 @@ nlohmann::json Config::to_json() const {
                  {"bin_deg", sim.bin_deg},
                  {"history_revolutions",
                   sim.history_revolutions == 0 ? nlohmann::json("all") : nlohmann::json(sim.history_revolutions)}};
+  if (brush)
+    j["brush"] = {{"filaments", brush->filaments},
+                  {"rows", brush->rows},
+                  {"row_phase_deg", brush->row_phase_deg},
+                  {"phase_jitter_deg", brush->phase_jitter_deg},
+                  {"length_scatter", brush->length_scatter},
+                  {"diameter_scatter", brush->diameter_scatter},
+                  {"seed", brush->seed}};
   j["compat"] = {{"thesis_forces", contact.friction.thesis_forces},
                  {"thesis_dcdt", sim.thesis_dcdt},
                  {"restitution_speed", impact.speed == RestitutionSpeed::full ? "full" : "normal"}};
@@ -664,6 +718,41 @@ Config load_config_values(const std::optional<std::string>& path,
                           const std::vector<std::pair<std::string, std::string>>& values) {
   toml::table root = read_file(path);
   return resolve(root, values);
+}
+
+namespace {
+// A JSON value of Config::to_json as the TOML node it was read from.
+void insert_json(toml::table& table, const std::string& key, const nlohmann::json& v) {
+  if (v.is_object()) {
+    toml::table sub;
+    for (auto it = v.begin(); it != v.end(); ++it) insert_json(sub, it.key(), it.value());
+    table.insert_or_assign(key, std::move(sub));
+  } else if (v.is_array()) {
+    toml::array a;
+    for (const auto& x : v) a.push_back(x.get<double>());
+    table.insert_or_assign(key, std::move(a));
+  } else if (v.is_boolean()) {
+    table.insert_or_assign(key, v.get<bool>());
+  } else if (v.is_number_integer()) {
+    table.insert_or_assign(key, v.get<int64_t>());
+  } else if (v.is_number()) {
+    table.insert_or_assign(key, v.get<double>());
+  } else {
+    table.insert_or_assign(key, v.get<std::string>());
+  }
+}
+}  // namespace
+
+Config revalidate(const Config& config) {
+  nlohmann::json j = config.to_json();
+  // Derived values the file would not hold: the end angle of a run over revolutions.
+  if (config.simulation.revolutions > 0)
+    j["simulation"].erase("end_angle_deg");
+  else
+    j["simulation"].erase("revolutions");
+  toml::table root;
+  for (auto it = j.begin(); it != j.end(); ++it) insert_json(root, it.key(), it.value());
+  return validate(root);
 }
 
 void require_known_key(const std::string& key, const std::string& flag) {

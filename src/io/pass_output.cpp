@@ -281,6 +281,8 @@ PassFiles::PassFiles(const std::filesystem::path& dir, int n, int history_revolu
   // A sweep's folder (its sweep.csv) is not made a run's as well: `plot` would draw one of the two.
   if (fs::exists(dir / "sweep.csv"))
     throw std::runtime_error(dir.string() + ": holds a sweep (sweep.csv), not a run; give another folder");
+  if (fs::exists(dir / "workpiece.csv"))
+    throw std::runtime_error(dir.string() + ": holds a brush (workpiece.csv), not a run; give another folder");
   prepare_output_folder(dir);
   lock_ = std::make_unique<FolderLock>(dir);  // one run at a time in a folder
   try {
@@ -475,8 +477,10 @@ bool complete_run_folder(const std::filesystem::path& dir, nlohmann::json* summa
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(in);
-    j.at("files").at("history.csv");  // a run's summary names at least these two
-    j.at("files").at("events.csv");
+    // A run's summary names at least history.csv and events.csv; a brush's its two tables.
+    const bool brush = j.contains("kind") && j["kind"] == "brush";
+    j.at("files").at(brush ? "workpiece.csv" : "history.csv");
+    j.at("files").at(brush ? "filaments.csv" : "events.csv");
     for (const auto& [name, entry] : j.at("files").items()) {
       std::error_code ec;
       const std::uintmax_t size = fs::file_size(dir / name, ec);

@@ -38,7 +38,8 @@ PassRecorder::PassRecorder(const System& system, const PassOptions& options, con
       qdd_(system.beam.modes()),
       iq_(Eigen::VectorXd::Zero(system.beam.modes())),
       iqd_(Eigen::VectorXd::Zero(system.beam.modes())),
-      bins_(options.bin_deg, system.beam.hub_motion().omega) {
+      bins_(options.bin_deg, system.beam.hub_motion().omega),
+      deliveries_(control.sink && control.sink->wants_deliveries()) {
   row_.q.resize(system.beam.modes());
   row_.qd.resize(system.beam.modes());
   row_.t = NAN;  // no row written yet
@@ -246,6 +247,7 @@ void PassRecorder::start(double t, const Eigen::VectorXd& q, const Eigen::Vector
   h_start_ = e.jacobi;
   energy_start_ = e.kinetic + e.potential;
   momentum_start_ = e.angular_momentum;
+  last_h_ = e.angular_momentum;
   energy_scale_ = std::abs(h_start_);
   section_state(system_.beam, q, qd, section_prev_);
   section_.resize(section_prev_.size());
@@ -400,6 +402,23 @@ void PassRecorder::accept(double t, const Eigen::VectorXd& q, const Eigen::Vecto
                           const ContactLoad& load, const StepIntegrals& in, bool force_sample) {
   PassSummary& s = result_.summary;
   s.damping_work_j += in.damping_work;
+  if (deliveries_) {
+    // The hub's angular impulse over the step: ΔH_z less the contact force's angular impulse.
+    const double h = system_.beam.energy(q, qd, *ws_).angular_momentum;
+    MomentumDelivery d;
+    d.from_deg = relative_angle_deg(last_t_);
+    d.span_deg = system_.beam.hub_motion().omega * (t - last_t_) * 180.0 / M_PI;
+    d.hub_angular_impulse_n_m_s = h - last_h_;
+    if (phase != Phase::free) {
+      if (load.slip != 0.0) contact_slip_ = load.slip;
+      d.normal_n_s = in.normal_impulse;
+      d.tangential_n_s = system_.law.friction.mu * contact_slip_ * in.normal_impulse;
+      d.hub_angular_impulse_n_m_s -= in.contact_moment;
+      d.along_m = tip_y(t, q);
+    }
+    last_h_ = h;
+    control_.sink->delivery(d);
+  }
   if (phase != Phase::free) {
     // Friction on the tip is −μ F_n s_t along t (either force convention), so the surface gets
     // +μ s_t ∫F_n dt along t; s_t is constant over a step (slip stops end steps).
@@ -444,6 +463,18 @@ void PassRecorder::impact(double t, const Eigen::VectorXd& q, const Eigen::Vecto
                     system_.beam.energy(q, qd_before, *ws_).angular_momentum;
   const double hub_work = system_.beam.hub_motion().omega * (dh - impulse_moment);
   impulse_moment_ += impulse_moment;
+  if (deliveries_) {
+    const double h_after = system_.beam.energy(q, qd_after, *ws_).angular_momentum;
+    MomentumDelivery d;
+    d.from_deg = relative_angle_deg(t);
+    d.normal_n_s = std::abs(r.impulse);
+    d.tangential_n_s = -r.tangential_impulse;
+    d.hub_angular_impulse_n_m_s = h_after - last_h_ - impulse_moment;  // = dh − impulse_moment when at the accepted point
+    d.along_m = tip_y(t, q);
+    d.impact = true;
+    last_h_ = h_after;
+    control_.sink->delivery(d);
+  }
   s.hub_impulsive_work_j += hub_work;
   s.impact_loss_j += r.contact_work;
   sample(t, q, qd_before, Phase::free, ContactLoad{});

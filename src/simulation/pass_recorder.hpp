@@ -104,6 +104,8 @@ private:
   ForceBins bins_;                      // of the pass, or of the revolution under way
   std::vector<ForceBin> complete_bins_;  // the last complete revolution's (runs over many)
   BinnedForcePeaks complete_peaks_;
+  bool deliveries_ = false;             // the sink wants each step's MomentumDelivery
+  double last_h_ = 0;                   // H_z at the last accepted point (deliveries) [kg m² /s]
   double contact_slip_ = 0;             // the slip direction of the episode's latest contact step
   double last_t_ = 0;
   bool in_episode_ = false;

@@ -1,5 +1,8 @@
 #include "rotbeam/sweep.hpp"
 
+#include "rotbeam/brush.hpp"
+#include "rotbeam/brush_output.hpp"
+
 #include "rotbeam/atomic_file.hpp"
 #include "rotbeam/folder_lock.hpp"
 #include "rotbeam/case.hpp"
@@ -8,6 +11,7 @@
 #include "rotbeam/pass_output.hpp"
 
 #include <optional>
+#include <span>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -79,6 +83,21 @@ const Metric kMetrics[] = {{"impacts", "/impacts"},
                            {"steps", "/steps"},
                            {"rhs_evaluations", "/rhs_evaluations"},
                            {"wall_time_s", "/wall_time_s"}};
+// The columns of a sweep over brushes (docs/brush.md: the brush maps).
+const Metric kBrushMetrics[] = {{"mean_normal_force_n", "/mean_normal_force_n"},
+                                {"mean_tangential_force_n", "/mean_tangential_force_n"},
+                                {"peak_normal_force_n", "/peak_normal_force_n"},
+                                {"peak_tangential_force_n", "/peak_tangential_force_n"},
+                                {"mean_hub_torque_n_m", "/mean_hub_torque_n_m"},
+                                {"mean_hub_power_w", "/mean_hub_power_w"},
+                                {"contact_zone_deg", "/contact_zone/angle_deg"},
+                                {"contact_zone_width_m", "/contact_zone/width_m"},
+                                {"depth_ratio", "/dimensionless/depth_ratio"},
+                                {"speed_ratio", "/dimensionless/speed_ratio"},
+                                {"force_ratio", "/dimensionless/force_ratio"},
+                                {"steady_filaments", "/steady_filaments"},
+                                {"failed_filaments", "/failed_filaments"},
+                                {"wall_time_s", "/wall_time_s"}};
 
 // True when a case's summary.json holds what resuming reads as summary_json wrote it: a config
 // object, and a failure that is null or an object with the string kind and message. A damaged one
@@ -195,6 +214,7 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
   {
     double need = 0.0;
     for (const Config& config : configs) {
+      if (config.brush) continue;  // a brush keeps no history
       const HistoryEstimate e = estimate_history(build_case(config));
       if (e.known && !e.upper_bound) need += e.csv_bytes;
     }
@@ -204,6 +224,8 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
                         " cases would take about " + size_text(need) + ", more than the " + size_text(available) +
                         " free where " + options.dir.string() + " goes (sample less often)");
   }
+  // A sweep is over brushes or over single filaments (a --vary of a brush key sets it in every case).
+  report.brush = !configs.empty() && configs.front().brush.has_value();
   // A run's folder (its summary.json) is not made a sweep's as well: `plot` would draw one of the two.
   if (std::filesystem::exists(options.dir / "summary.json"))
     throw ConfigError("-o " + options.dir.string() + ": holds a run (summary.json), not a sweep; give another folder");
@@ -279,6 +301,26 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
         const std::size_t i = todo[n];
         SweepCaseResult res;
         try {
+          if (configs[i].brush) {
+            // One brush per case, its filaments on this case's thread (the cases fill the cores).
+            BrushFiles files(options.dir / report.cases[i].folder);
+            BrushOptions brush_options;
+            brush_options.threads = 1;
+            brush_options.stop = options.stop;
+            const BrushResult brush = run_brush(configs[i], brush_options);
+            files.commit(brush, configs[i]);
+            res.summary = brush_summary_json(brush, configs[i]);
+            const std::optional<NumericalFailure>& f = brush.summary.failure;
+            res.status = !f ? SweepStatus::done
+                         : f->kind == FailureKind::interrupted ? SweepStatus::interrupted
+                                                               : SweepStatus::failed;
+            if (f)
+              res.message = std::string(failure_name(f->kind)) + " (filament " +
+                            std::to_string(brush.summary.failed_filament + 1) + "): " + f->message;
+            std::lock_guard<std::mutex> lock(mutex);
+            report.results[i] = res;
+            return;
+          }
           const Case c = build_case(configs[i]);
           PassFiles files(options.dir / report.cases[i].folder, configs[i].beam.modes, configs[i].simulation.history_revolutions);
           const PassResult pass = run_case(c, {&files, options.stop, {}});
@@ -327,7 +369,8 @@ std::string sweep_csv(const SweepReport& report) {
     out += csv_field(a.key);
   }
   out += ",status";
-  for (const Metric& m : kMetrics) out += std::string(",") + m.column;
+  const std::span<const Metric> metrics = report.brush ? std::span<const Metric>(kBrushMetrics) : std::span<const Metric>(kMetrics);
+  for (const Metric& m : metrics) out += std::string(",") + m.column;
   out += ",message\n";
   for (std::size_t i = 0; i < report.cases.size(); ++i) {
     const SweepCase& c = report.cases[i];
@@ -340,7 +383,7 @@ std::string sweep_csv(const SweepReport& report) {
       out += csv_field(v);
     }
     out += std::string(",") + sweep_status_name(r.status);
-    for (const Metric& m : kMetrics) {
+    for (const Metric& m : metrics) {
       out += ",";
       const nlohmann::json::json_pointer at(m.pointer);
       if (r.summary.is_object() && r.summary.contains(at) && r.summary[at].is_number()) {

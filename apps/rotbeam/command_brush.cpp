@@ -1,0 +1,124 @@
+// `rotbeam brush`: a brush of many filaments at their steady state, and its force, torque and power
+// on the workpiece (docs/brush.md).
+#include "commands.hpp"
+#include "common.hpp"
+
+#include "rotbeam/brush.hpp"
+#include "rotbeam/brush_output.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <unistd.h>
+
+namespace rotbeam::cli {
+
+namespace {
+
+struct BrushCommandOptions {
+  CaseOptions case_options;
+  std::string output_dir;
+  int jobs = 0;
+  bool json = false;
+  bool quiet = false;
+};
+
+void print_summary(const Config& config, const BrushResult& r, const std::string& dir) {
+  const BrushSummary& s = r.summary;
+  const BrushSettings& b = *config.brush;
+  std::cout << "Brush: " << s.filaments << " filaments (" << b.filaments << " around × " << b.rows << " rows, "
+            << s.distinct_filaments << " distinct), " << number_text(config.beam.speed_rpm) << " rpm, depth "
+            << percent_text(config.surface.depth_fraction) << " %, μ = " << config.contact.friction.mu << ", "
+            << config.beam.modes << " modes\n";
+  std::cout << "  filaments             " << s.steady << " steady, " << s.not_steady << " not steady, " << s.failed
+            << " failed, " << s.filaments - s.reaching << " clear of the surface\n";
+  std::cout << "  mean force            " << fixed(s.mean_normal_force_n, 4) << " N normal, "
+            << fixed(s.mean_tangential_force_n, 4) << " N tangential (over a revolution)\n";
+  std::cout << "  peak binned force     " << fixed(s.peak_normal_force_n, 4) << " N normal, "
+            << fixed(s.peak_tangential_force_n, 4) << " N tangential (per " << number_text(s.bin_deg)
+            << "° bin of hub angle)\n";
+  std::cout << "  hub                   mean torque " << s.mean_hub_torque_n_m * 1e3 << " mN m, mean power "
+            << s.mean_hub_power_w * 1e3 << " mW\n";
+  if (std::isfinite(s.contact_zone_from_deg))
+    std::cout << "  contact zone          " << fixed(s.contact_zone_from_deg, 3) << "° to "
+              << fixed(s.contact_zone_to_deg, 3) << "° of a filament's angle, " << fixed(s.contact_zone_width_m * 1e3, 3)
+              << " mm along the surface\n";
+  else
+    std::cout << "  contact zone          none: no filament touched the surface\n";
+  std::cout << "  ledger per revolution hub " << s.hub_work_j * 1e3 << " mJ, friction " << s.friction_work_j * 1e3
+            << " mJ, damping " << s.damping_work_j * 1e3 << " mJ, impacts " << s.impact_loss_j * 1e3
+            << " mJ, residual " << s.ledger_residual_j << " J\n";
+  std::cout << "  dimensionless         p = " << s.depth_ratio << ", Ω/ω₁ = " << s.speed_ratio
+            << ", F/(3EI·pL/L³) per filament = " << s.force_ratio << "\n";
+  std::cout << "  wall time             " << fixed(s.wall_time_s, 2) << " s\n";
+  for (const std::string& w : s.warnings) std::cout << "  warning: " << w << "\n";
+  std::cout << "  wrote " << (std::filesystem::path(dir) / "workpiece.csv").string()
+            << ", filaments.csv, summary.json\n";
+}
+
+int run_brush_command(const BrushCommandOptions& o) {
+  if (o.jobs < 0) throw ConfigError("--jobs " + std::to_string(o.jobs) + ": must be >= 0");
+  const Config config = o.case_options.load();
+  if (!config.brush)
+    throw ConfigError("brush: the configuration has no [brush] section (give brush.filaments, e.g. --set brush.filaments=24)");
+  if (o.output_dir.empty()) throw ConfigError("-o DIR: an output folder is required");
+  brush_filaments(config);  // the draw itself cannot fail, but a bad brush is refused before the folder is made
+  std::unique_ptr<BrushFiles> files;
+  try {
+    files = std::make_unique<BrushFiles>(o.output_dir);
+  } catch (const std::exception& e) {
+    throw ConfigError(std::string("-o ") + e.what());
+  }
+  install_interrupt_handlers();
+  BrushOptions options;
+  options.threads = o.jobs;
+  options.stop = &interrupt_token();
+  const bool terminal = !o.quiet && isatty(STDERR_FILENO);
+  auto line = std::make_unique<LiveLine>(terminal);
+  line->set([](double e) { return "filaments under way, " + fixed(e, 0) + " s elapsed"; });
+  options.on_progress = [&line](const BrushProgress& p) {
+    const int finished = p.finished, total = p.total;
+    const double at = p.elapsed_s, eta = p.eta_s;
+    line->set([=](double e) {
+      return std::to_string(finished) + "/" + std::to_string(total) + " distinct filaments at their steady state, " +
+             fixed(e, 0) + " s elapsed, ETA " + fixed(std::max(0.0, eta - (e - at)), 0) + " s";
+    });
+  };
+  const BrushResult r = run_brush(config, options);
+  line.reset();
+  files->commit(r, config);
+  if (o.json)
+    std::cout << brush_summary_json(r, config).dump(2) << "\n";
+  else
+    print_summary(config, r, o.output_dir);
+  if (r.summary.failure) {
+    const NumericalFailure& f = *r.summary.failure;
+    if (f.kind == FailureKind::interrupted) {
+      print_error("interrupted: " + std::to_string(r.summary.failed) + " filaments not finished; the files in " +
+                  o.output_dir + " hold the others");
+      return kInterrupted;
+    }
+    print_error("filament " + std::to_string(r.summary.failed_filament + 1) + " failed (" + failure_name(f.kind) +
+                ") at t = " + number_text(f.t) + " s, θ = " + fixed(f.theta * 180.0 / M_PI, 4) + " deg: " + f.message +
+                "; the sums in " + o.output_dir + " leave out " + std::to_string(r.summary.failed) + " filaments");
+    return exit_code_for_failure(f.kind);
+  }
+  return kSuccess;
+}
+
+}  // namespace
+
+Command add_brush_command(CLI::App& app) {
+  auto opts = std::make_shared<BrushCommandOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "brush", "A brush of many filaments at their steady state: force, torque and power on the workpiece");
+  opts->case_options.add_to(*sub);
+  sub->add_option("-o,--output", opts->output_dir, "Output folder (created if needed)")->required();
+  sub->add_option("--jobs", opts->jobs, "Threads (default: all cores)");
+  sub->add_flag("--json", opts->json, "Print summary.json instead of the human summary");
+  sub->add_flag("--quiet", opts->quiet, "No progress line on stderr");
+  return [opts] { return run_brush_command(*opts); };
+}
+
+}  // namespace rotbeam::cli

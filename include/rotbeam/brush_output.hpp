@@ -1,0 +1,42 @@
+// Files of a brush (docs/brush.md): workpiece.csv (the force, torque and power on the workpiece
+// over one revolution), filaments.csv (one row per filament) and summary.json, written last, with
+// the sizes of the other two, so that a folder holds a summary only beside the complete files.
+#pragma once
+
+#include "rotbeam/brush.hpp"
+
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace rotbeam {
+
+/// workpiece.csv: one row per bin of output.bin_deg over the reference hub angle (−180°, 180°].
+std::string workpiece_csv(const BrushResult& result, double omega);
+/// filaments.csv: one row per filament: its place, parameters and steady-state means.
+std::string filaments_csv(const BrushResult& result);
+/// summary.json of a brush: "kind": "brush", the metrics, the filaments' counts, warnings, the
+/// failure (or null) and the resolved configuration.
+nlohmann::json brush_summary_json(const BrushResult& result, const Config& config);
+
+class FolderLock;
+
+/// The folder of a brush, held while it runs: made if needed and locked (one writer at a time);
+/// refused when it holds a run or a sweep, or a folder under one of the brush's file names; an
+/// older brush's summary.json and pictures are removed at once, so that the folder does not look
+/// complete until commit() writes summary.json last. Throws std::runtime_error naming the path.
+class BrushFiles {
+public:
+  explicit BrushFiles(const std::filesystem::path& dir);
+  ~BrushFiles();
+  BrushFiles(const BrushFiles&) = delete;
+  BrushFiles& operator=(const BrushFiles&) = delete;
+  void commit(const BrushResult& result, const Config& config);
+
+private:
+  std::filesystem::path dir_;
+  std::unique_ptr<FolderLock> lock_;
+};
+
+}  // namespace rotbeam

@@ -1,0 +1,169 @@
+#include "rotbeam/brush_output.hpp"
+
+#include "rotbeam/atomic_file.hpp"
+#include "rotbeam/folder_lock.hpp"
+#include "rotbeam/pass_output.hpp"
+
+#include <charconv>
+#include <cmath>
+
+namespace rotbeam {
+
+namespace {
+
+// The shortest decimal that reads back to the same double; "nan" for NaN.
+void put(std::string& out, double v) {
+  if (std::isnan(v)) {
+    out += "nan";
+    return;
+  }
+  char buf[40];
+  out.append(buf, std::to_chars(buf, buf + sizeof buf, v).ptr);
+}
+
+nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+constexpr const char* kFiles[] = {"workpiece.csv", "filaments.csv", "summary.json"};
+constexpr const char* kPictures[] = {"brush_force.png", "brush_profile.png", "brush_filaments.png"};
+
+}  // namespace
+
+std::string workpiece_csv(const BrushResult& result, double omega) {
+  std::string out =
+      "theta_from_deg,theta_to_deg,normal_impulse_n_s,tangential_impulse_n_s,normal_force_n,tangential_force_n,"
+      "hub_angular_impulse_n_m_s,hub_torque_n_m,hub_power_w,impacts\n";
+  for (const ForceBin& b : result.workpiece) {
+    for (double v : {b.from_deg, b.to_deg, b.normal_impulse_n_s, b.tangential_impulse_n_s, b.mean_normal_force_n,
+                     b.mean_tangential_force_n, b.hub_angular_impulse_n_m_s, b.mean_hub_torque_n_m,
+                     b.mean_hub_torque_n_m * omega}) {
+      put(out, v);
+      out += ',';
+    }
+    out += std::to_string(b.impacts);
+    out += '\n';
+  }
+  return out;
+}
+
+std::string filaments_csv(const BrushResult& result) {
+  std::string out =
+      "filament,row,position,phase_deg,length_m,diameter_m,depth_fraction,distinct,reaches,status,"
+      "period_revolutions,revolutions_run,mean_normal_force_n,mean_tangential_force_n,mean_hub_torque_n_m,"
+      "mean_hub_power_w,impacts_per_revolution,contact_time_s,peak_normal_force_n,max_tip_deflection_ratio,"
+      "first_contact_deg,last_contact_deg,ledger_residual_j\n";
+  for (const BrushFilament& f : result.filaments) {
+    const FilamentSteadyState& d = result.distinct[f.group];
+    out += std::to_string(f.index + 1) + ',' + std::to_string(f.row + 1) + ',' + std::to_string(f.position + 1) + ',';
+    for (double v : {f.phase_deg, f.length_m, f.diameter_m, f.depth_fraction}) {
+      put(out, v);
+      out += ',';
+    }
+    out += std::to_string(f.group + 1) + ',' + (d.reaches ? "true" : "false") + ',';
+    const char* status = !d.reaches ? "clear" : d.ran ? (d.steady ? "steady" : "not_steady") : d.failure ? "failed" : "error";
+    if (d.failure && d.failure->kind == FailureKind::interrupted) status = "interrupted";
+    out += status;
+    out += ',' + std::to_string(d.period_revolutions) + ',' + std::to_string(d.revolutions_run);
+    for (double v : {d.mean_normal_force_n, d.mean_tangential_force_n, d.mean_hub_torque_n_m, d.mean_hub_power_w,
+                     d.impacts_per_revolution, d.contact_time_s, d.peak_normal_force_n, d.max_tip_deflection_ratio,
+                     d.first_contact_deg, d.last_contact_deg, d.ledger_residual_j}) {
+      out += ',';
+      put(out, v);
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+nlohmann::json brush_summary_json(const BrushResult& result, const Config& config) {
+  const BrushSummary& s = result.summary;
+  nlohmann::json j;
+  j["kind"] = "brush";
+  j["filaments"] = s.filaments;
+  j["distinct_filaments"] = s.distinct_filaments;
+  j["reaching_filaments"] = s.reaching;
+  j["steady_filaments"] = s.steady;
+  j["not_steady_filaments"] = s.not_steady;
+  j["failed_filaments"] = s.failed;
+  j["revolution_period_s"] = s.revolution_period_s;
+  j["mean_normal_force_n"] = s.mean_normal_force_n;
+  j["mean_tangential_force_n"] = s.mean_tangential_force_n;
+  j["peak_normal_force_n"] = s.peak_normal_force_n;
+  j["peak_tangential_force_n"] = s.peak_tangential_force_n;
+  j["peak_normal_at_deg"] = number_or_null(s.peak_normal_at_deg);
+  j["mean_hub_torque_n_m"] = s.mean_hub_torque_n_m;
+  j["mean_hub_power_w"] = s.mean_hub_power_w;
+  j["bin_deg"] = s.bin_deg;
+  j["contact_zone"] = {{"from_deg", number_or_null(s.contact_zone_from_deg)},
+                       {"to_deg", number_or_null(s.contact_zone_to_deg)},
+                       {"angle_deg", s.contact_zone_deg},
+                       {"width_m", s.contact_zone_width_m}};
+  j["ledger_per_revolution"] = {{"hub_work_j", s.hub_work_j},
+                                {"friction_work_j", s.friction_work_j},
+                                {"damping_work_j", s.damping_work_j},
+                                {"impact_loss_j", s.impact_loss_j},
+                                {"energy_change_j", s.energy_change_j},
+                                {"residual_j", s.ledger_residual_j}};
+  j["dimensionless"] = {
+      {"depth_ratio", s.depth_ratio},
+      {"speed_ratio", s.speed_ratio},
+      {"force_ratio", s.force_ratio},
+      {"definitions",
+       {{"depth_ratio", "p = d/L, the nominal filament's depth over its length"},
+        {"speed_ratio", "Ω/ω₁: hub speed over the nominal cantilever's first bending frequency at rest, "
+                        "ω₁ = 1.87510² √(EI/(ρAL⁴))"},
+        {"force_ratio", "mean normal force per filament over 3EI·pL/L³, the static tip force that bends the "
+                        "nominal cantilever by the depth"}}}};
+  j["wall_time_s"] = s.wall_time_s;
+  j["warnings"] = s.warnings;
+  if (s.failure)
+    j["failure"] = {{"kind", failure_name(s.failure->kind)},
+                    {"filament", s.failed_filament + 1},
+                    {"t_s", s.failure->t},
+                    {"theta_deg", s.failure->theta * 180.0 / M_PI},
+                    {"message", s.failure->message}};
+  else
+    j["failure"] = nullptr;
+  j["config"] = config.to_json();
+  return j;
+}
+
+BrushFiles::BrushFiles(const std::filesystem::path& dir) : dir_(dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(dir / "sweep.csv", ec))
+    throw std::runtime_error(dir.string() + ": holds a sweep (sweep.csv), not a brush; give another folder");
+  if (fs::exists(dir / "history.csv", ec))
+    throw std::runtime_error(dir.string() + ": holds a run (history.csv), not a brush; give another folder");
+  prepare_output_folder(dir);
+  lock_ = std::make_unique<FolderLock>(dir);
+  for (const char* name : kFiles)
+    if (fs::is_directory(fs::symlink_status(dir / name, ec))) {
+      lock_.reset();
+      throw std::runtime_error((dir / name).string() + ": is a folder, where the brush writes its file " + name);
+    }
+  // An older brush's summary (and pictures) go now: until commit() the folder is not complete.
+  const bool older = fs::is_regular_file(fs::symlink_status(dir / "summary.json", ec));
+  ec.clear();
+  fs::remove(dir / "summary.json", ec);
+  if (ec) {
+    lock_.reset();
+    throw std::runtime_error((dir / "summary.json").string() + ": cannot remove the older summary (" + ec.message() + ")");
+  }
+  if (older)
+    for (const char* drawn : kPictures) fs::remove(dir / drawn, ec);
+}
+
+BrushFiles::~BrushFiles() = default;
+
+void BrushFiles::commit(const BrushResult& result, const Config& config) {
+  const double omega = config.beam.speed_rpm * M_PI / 30.0;
+  const std::string workpiece = workpiece_csv(result, omega);
+  const std::string filaments = filaments_csv(result);
+  write_file_atomically(dir_ / "workpiece.csv", workpiece);
+  write_file_atomically(dir_ / "filaments.csv", filaments);
+  nlohmann::json j = brush_summary_json(result, config);
+  j["files"] = {{"workpiece.csv", {{"bytes", workpiece.size()}}}, {"filaments.csv", {{"bytes", filaments.size()}}}};
+  write_file_atomically(dir_ / "summary.json", j.dump(2) + "\n");
+}
+
+}  // namespace rotbeam

@@ -1,0 +1,326 @@
+#include "rotbeam/brush.hpp"
+
+#include "rotbeam/case.hpp"
+#include "rotbeam/job_runner.hpp"
+
+#include <boost/random/mersenne_twister.hpp>
+#include <boost/random/normal_distribution.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <map>
+#include <mutex>
+#include <utility>
+
+namespace rotbeam {
+
+namespace {
+
+// A standard normal draw truncated to ±3 (redrawn beyond), so scattered lengths and diameters stay
+// positive for the accepted scatters (≤ 0.3).
+template <class Engine>
+double truncated_normal(Engine& engine, boost::random::normal_distribution<double>& normal) {
+  for (;;) {
+    const double x = normal(engine);
+    if (std::abs(x) <= 3.0) return x;
+  }
+}
+
+// Collects one filament's momentum deliveries revolution by revolution, keeping the last
+// kMaxPeriod complete revolutions (the longest orbit the steady-state search finds) and their
+// records. Rows and events are dropped. The vectors are recycled, so after the first revolutions
+// nothing is allocated.
+class DeliveryRing final : public PassSink {
+public:
+  static constexpr std::size_t kMaxPeriod = 4;
+
+  void row(const HistoryRow&) override {}
+  void event(const PassEvent&) override {}
+  bool wants_deliveries() const override { return true; }
+  void delivery(const MomentumDelivery& d) override { current_.push_back(d); }
+  void revolution(const RevolutionRecord& r) override {
+    if (!r.complete) {
+      current_.clear();
+      return;
+    }
+    std::vector<MomentumDelivery> recycled;
+    if (kept_.size() == kMaxPeriod) {
+      recycled = std::move(kept_.front().first);
+      kept_.pop_front();
+    }
+    kept_.emplace_back(std::move(current_), r);
+    current_ = std::move(recycled);
+    current_.clear();
+  }
+  /// The last m complete revolutions, oldest first (fewer when fewer were run).
+  std::vector<const std::pair<std::vector<MomentumDelivery>, RevolutionRecord>*> last(std::size_t m) const {
+    std::vector<const std::pair<std::vector<MomentumDelivery>, RevolutionRecord>*> out;
+    const std::size_t take = std::min(m, kept_.size());
+    for (std::size_t i = kept_.size() - take; i < kept_.size(); ++i) out.push_back(&kept_[i]);
+    return out;
+  }
+
+private:
+  std::vector<MomentumDelivery> current_;
+  std::deque<std::pair<std::vector<MomentumDelivery>, RevolutionRecord>> kept_;
+};
+
+// The configuration of one filament: the nominal one with its length, diameter and depth, no rows
+// or near-surface rows sampled (the brush keeps no history) and no Floquet multipliers (the brush
+// reports none; they would cost 4n runs of the orbit), validated as a file is.
+Config filament_config(const Config& base, const BrushFilament& f) {
+  Config c = base;
+  c.brush.reset();
+  c.beam.length_m = f.length_m;
+  c.beam.diameter_m = f.diameter_m;
+  c.surface.depth_fraction = f.depth_fraction;
+  c.simulation.output_interval_s = 1e30;
+  c.simulation.near_surface_gap_m = 0.0;
+  c.simulation.multipliers = false;
+  return revalidate(c);
+}
+
+double clock_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// One distinct filament run to its steady state; its deliveries over the orbit go into `bins` once
+// per copy, shifted by the copy's phase and weighted 1/m.
+FilamentSteadyState run_distinct(const Config& base, const BrushFilament& representative,
+                                 const std::vector<const BrushFilament*>& copies, ForceBins& bins,
+                                 const StopToken* stop) {
+  FilamentSteadyState s;
+  const double start = clock_s();
+  Config config;
+  try {
+    config = filament_config(base, representative);
+  } catch (const ConfigError& e) {
+    s.error = e.what();
+    return s;
+  }
+  const Case c = build_case(config);
+  DeliveryRing ring;
+  const PassResult r = run_case(c, {&ring, stop, {}});
+  s.wall_time_s = clock_s() - start;
+  s.revolutions_run = r.summary.revolutions;
+  s.failure = r.failure;
+  if (r.failure) return s;
+  s.ran = true;
+  s.steady = r.summary.steady_state.reached;
+  const std::size_t m = s.steady ? static_cast<std::size_t>(std::max(1, r.summary.steady_state.period_revolutions)) : 1;
+  const auto orbit = ring.last(m);
+  if (orbit.empty()) {
+    s.ran = false;
+    s.error = "no complete revolution was run";
+    return s;
+  }
+  s.period_revolutions = static_cast<int>(orbit.size());
+  const double weight = 1.0 / static_cast<double>(orbit.size());
+  const double omega = c.beam->hub_motion().omega;
+  const double period_s = 2.0 * M_PI / omega;
+  double normal = 0, tangential = 0, hub = 0;
+  for (const auto* rev : orbit) {
+    for (const MomentumDelivery& d : rev->first) {
+      normal += d.normal_n_s;
+      tangential += d.tangential_n_s;
+      hub += d.hub_angular_impulse_n_m_s;
+      if (d.normal_n_s > 0.0) {
+        // The delivery's own angles (its first point, and its last for a step).
+        const double last = d.from_deg + d.span_deg;
+        s.first_contact_deg = std::isnan(s.first_contact_deg) ? d.from_deg : std::min(s.first_contact_deg, d.from_deg);
+        s.last_contact_deg = std::isnan(s.last_contact_deg) ? last : std::max(s.last_contact_deg, last);
+        if (std::isfinite(d.along_m)) {
+          s.along_min_m = std::isnan(s.along_min_m) ? d.along_m : std::min(s.along_min_m, d.along_m);
+          s.along_max_m = std::isnan(s.along_max_m) ? d.along_m : std::max(s.along_max_m, d.along_m);
+        }
+      }
+    }
+    const RevolutionRecord& rec = rev->second;
+    s.impacts_per_revolution += weight * rec.impacts;
+    s.contact_time_s += weight * rec.contact_time_s;
+    s.peak_normal_force_n = std::max(s.peak_normal_force_n, rec.peak_normal_force_n);
+    s.max_tip_deflection_ratio = std::max(s.max_tip_deflection_ratio, rec.max_tip_deflection_ratio);
+    s.hub_work_j += weight * rec.hub_work_j;
+    s.friction_work_j += weight * rec.friction_work_j;
+    s.damping_work_j += weight * rec.damping_work_j;
+    s.impact_loss_j += weight * rec.impact_loss_j;
+    s.energy_change_j += weight * rec.energy_change_j;
+    s.ledger_residual_j = std::max(s.ledger_residual_j, std::abs(rec.ledger_residual_j));
+  }
+  s.mean_normal_force_n = weight * normal / period_s;
+  s.mean_tangential_force_n = weight * tangential / period_s;
+  s.mean_hub_torque_n_m = weight * hub / period_s;
+  s.mean_hub_power_w = s.mean_hub_torque_n_m * omega;
+  for (const BrushFilament* f : copies)
+    for (const auto* rev : orbit)
+      for (const MomentumDelivery& d : rev->first) bins.add(d, f->phase_deg, weight);
+  return s;
+}
+
+}  // namespace
+
+std::vector<BrushFilament> brush_filaments(const Config& config) {
+  if (!config.brush) throw ConfigError("brush: the configuration has no [brush] section");
+  const BrushSettings& b = *config.brush;
+  boost::random::mt19937_64 engine(b.seed);
+  boost::random::normal_distribution<double> normal(0.0, 1.0);
+  const double l0 = config.beam.length_m, d0 = config.beam.diameter_m, p0 = config.surface.depth_fraction;
+  std::vector<BrushFilament> out;
+  out.reserve(static_cast<std::size_t>(b.filaments) * b.rows);
+  std::map<std::pair<double, double>, int> groups;
+  for (int r = 0; r < b.rows; ++r)
+    for (int k = 0; k < b.filaments; ++k) {
+      BrushFilament f;
+      f.index = static_cast<int>(out.size());
+      f.row = r;
+      f.position = k;
+      const double jitter = truncated_normal(engine, normal);
+      const double dl = truncated_normal(engine, normal);
+      const double dd = truncated_normal(engine, normal);
+      f.phase_deg = 360.0 * k / b.filaments + r * b.row_phase_deg + b.phase_jitter_deg * jitter;
+      f.length_m = b.length_scatter > 0.0 ? l0 * (1.0 + b.length_scatter * dl) : l0;
+      f.diameter_m = b.diameter_scatter > 0.0 ? d0 * (1.0 + b.diameter_scatter * dd) : d0;
+      f.depth_fraction = f.length_m == l0 ? p0 : (f.length_m - l0 + p0 * l0) / f.length_m;
+      const auto key = std::make_pair(f.length_m, f.diameter_m);
+      const auto it = groups.find(key);
+      f.group = it != groups.end() ? it->second : static_cast<int>(groups.size());
+      if (it == groups.end()) groups.emplace(key, f.group);
+      out.push_back(f);
+    }
+  return out;
+}
+
+BrushResult run_brush(const Config& config, const BrushOptions& options) {
+  const double start = clock_s();
+  BrushResult result;
+  result.filaments = brush_filaments(config);
+  int group_count = 0;
+  for (const BrushFilament& f : result.filaments) group_count = std::max(group_count, f.group + 1);
+  std::vector<const BrushFilament*> representative(group_count, nullptr);
+  std::vector<std::vector<const BrushFilament*>> copies(group_count);
+  for (const BrushFilament& f : result.filaments) {
+    if (!representative[f.group]) representative[f.group] = &f;
+    copies[f.group].push_back(&f);
+  }
+  result.distinct.resize(group_count);
+  std::vector<int> todo;  // groups whose tip reaches the surface
+  for (int g = 0; g < group_count; ++g) {
+    if (representative[g]->depth_fraction > 0.0)
+      todo.push_back(g);
+    else
+      result.distinct[g].reaches = false;
+  }
+
+  const double omega = config.beam.speed_rpm * M_PI / 30.0;
+  ForceBins total(config.simulation.bin_deg, omega);
+  // Each group's bins are summed into the total in group order, whatever order the groups finish
+  // in, so the result does not depend on the thread count.
+  std::mutex mutex;
+  std::map<int, ForceBins> finished_bins;
+  std::size_t next_to_merge = 0;
+  BrushProgress progress;
+  progress.total = static_cast<int>(todo.size());
+  JobRunnerOptions runner;
+  runner.threads = options.threads;
+  runner.stop = options.stop;
+  run_jobs(
+      todo.size(),
+      [&](std::size_t j) {
+        const int g = todo[j];
+        ForceBins bins(config.simulation.bin_deg, omega);
+        FilamentSteadyState s = run_distinct(config, *representative[g], copies[g], bins, options.stop);
+        std::lock_guard<std::mutex> lock(mutex);
+        result.distinct[g] = std::move(s);
+        finished_bins.emplace(static_cast<int>(j), std::move(bins));
+        while (next_to_merge < todo.size()) {
+          const auto it = finished_bins.find(static_cast<int>(next_to_merge));
+          if (it == finished_bins.end()) break;
+          total.merge(it->second);
+          finished_bins.erase(it);
+          ++next_to_merge;
+        }
+        ++progress.finished;
+        progress.elapsed_s = clock_s() - start;
+        progress.eta_s = progress.elapsed_s / progress.finished * (progress.total - progress.finished);
+        if (options.on_progress) options.on_progress(progress);
+      },
+      runner);
+  result.workpiece = total.full_table();
+
+  BrushSummary& s = result.summary;
+  s.filaments = static_cast<int>(result.filaments.size());
+  s.distinct_filaments = group_count;
+  s.bin_deg = config.simulation.bin_deg;
+  s.revolution_period_s = 2.0 * M_PI / omega;
+  for (const BrushFilament& f : result.filaments) {
+    const FilamentSteadyState& d = result.distinct[f.group];
+    if (!d.reaches) continue;
+    ++s.reaching;
+    if (!d.ran) {
+      ++s.failed;
+      if (s.failed_filament < 0) {
+        s.failed_filament = f.index;
+        if (d.failure)
+          s.failure = d.failure;
+        else if (!d.error.empty())
+          s.failure = NumericalFailure{FailureKind::interrupted, 0.0, 0.0, d.error};
+        else
+          s.failure = NumericalFailure{FailureKind::interrupted, 0.0, 0.0, "not run (interrupted)"};
+      }
+      continue;
+    }
+    (d.steady ? s.steady : s.not_steady) += 1;
+    s.mean_normal_force_n += d.mean_normal_force_n;
+    s.mean_tangential_force_n += d.mean_tangential_force_n;
+    s.mean_hub_torque_n_m += d.mean_hub_torque_n_m;
+    s.hub_work_j += d.hub_work_j;
+    s.friction_work_j += d.friction_work_j;
+    s.damping_work_j += d.damping_work_j;
+    s.impact_loss_j += d.impact_loss_j;
+    s.energy_change_j += d.energy_change_j;
+    s.ledger_residual_j += d.ledger_residual_j;
+    if (std::isfinite(d.first_contact_deg)) {
+      s.contact_zone_from_deg = std::isnan(s.contact_zone_from_deg) ? d.first_contact_deg
+                                                                     : std::min(s.contact_zone_from_deg, d.first_contact_deg);
+      s.contact_zone_to_deg = std::isnan(s.contact_zone_to_deg) ? d.last_contact_deg
+                                                                 : std::max(s.contact_zone_to_deg, d.last_contact_deg);
+    }
+  }
+  s.mean_hub_power_w = s.mean_hub_torque_n_m * omega;
+  if (std::isfinite(s.contact_zone_from_deg)) s.contact_zone_deg = s.contact_zone_to_deg - s.contact_zone_from_deg;
+  double along_min = INFINITY, along_max = -INFINITY;
+  for (const FilamentSteadyState& d : result.distinct)
+    if (d.ran && std::isfinite(d.along_min_m)) {
+      along_min = std::min(along_min, d.along_min_m);
+      along_max = std::max(along_max, d.along_max_m);
+    }
+  if (along_max >= along_min) s.contact_zone_width_m = along_max - along_min;
+  const BinnedForcePeaks peaks = total.peaks();
+  s.peak_normal_force_n = peaks.peak_normal_force_n;
+  s.peak_tangential_force_n = peaks.peak_tangential_force_n;
+  s.peak_normal_at_deg = peaks.peak_normal_at_deg;
+
+  const BeamParameters& beam = config.beam;
+  const double area = M_PI * beam.diameter_m * beam.diameter_m / 4.0;
+  const double ei = beam.youngs_modulus_pa * M_PI * std::pow(beam.diameter_m, 4) / 64.0;
+  const double l = beam.length_m;
+  const double omega1 = 1.8751040687119611 * 1.8751040687119611 * std::sqrt(ei / (beam.density_kg_m3 * area * std::pow(l, 4)));
+  s.depth_ratio = config.surface.depth_fraction;
+  s.speed_ratio = omega / omega1;
+  const double static_force = 3.0 * ei * config.surface.depth_fraction * l / (l * l * l);
+  s.force_ratio = s.filaments > 0 ? s.mean_normal_force_n / s.filaments / static_force : 0.0;
+  if (s.not_steady > 0)
+    s.warnings.push_back(std::to_string(s.not_steady) + " of " + std::to_string(s.reaching) +
+                         " filaments did not reach their steady state within simulation.revolutions = " +
+                         std::to_string(config.simulation.revolutions) +
+                         ": their last revolution is used (add beam.damping_ratio, or raise simulation.revolutions)");
+  if (s.reaching < s.filaments)
+    s.warnings.push_back(std::to_string(s.filaments - s.reaching) +
+                         " filaments are too short to reach the surface and deliver nothing");
+  s.wall_time_s = clock_s() - start;
+  return result;
+}
+
+}  // namespace rotbeam
