@@ -1,5 +1,7 @@
 // rotbeam._core: the C++ library's jobs for Python, with the GIL released while they compute.
 // Configuration errors raise rotbeam._core.ConfigError (a ValueError) with the CLI's message.
+#include "rotbeam/brush.hpp"
+#include "rotbeam/brush_output.hpp"
 #include "rotbeam/case.hpp"
 #include "rotbeam/process_memory.hpp"
 #include "rotbeam/impact_output.hpp"
@@ -144,6 +146,22 @@ py::tuple run(const std::optional<std::string>& path, const Values& overrides) {
                         py::bytes(revolutions_csv(result, config.beam.modes)), py::bytes(force_bins_csv(result)));
 }
 
+py::tuple brush(const std::optional<std::string>& path, const Values& overrides, int threads) {
+  const Config config = load(path, overrides);
+  if (!config.brush)
+    throw ConfigError("brush: the configuration has no [brush] section (give brush.filaments, e.g. {\"brush.filaments\": 24})");
+  if (threads < 0) throw ConfigError("jobs = " + std::to_string(threads) + ": must be >= 0 (0: all cores)");
+  const BrushResult result = interruptible([&](const StopToken& stop) {
+    BrushOptions options;
+    options.threads = threads;
+    options.stop = &stop;
+    return run_brush(config, options);
+  });
+  const double omega = config.beam.speed_rpm * M_PI / 30.0;
+  return py::make_tuple(from_json(brush_summary_json(result, config)), py::bytes(workpiece_csv(result, omega)),
+                        py::bytes(profile_csv(result, omega)), py::bytes(filaments_csv(result)));
+}
+
 py::object impact(const std::optional<std::string>& path, const Values& overrides) {
   const Config config = load(path, overrides);
   const Case c = build_case(config);
@@ -219,6 +237,8 @@ PYBIND11_MODULE(_core, m) {
   m.def("run", &run, py::arg("path"), py::arg("overrides"),
         "A whole pass: (summary dict, history dict of arrays, list of event dicts, revolutions.csv's text, "
         "force_bins.csv's text).");
+  m.def("brush", &brush, py::arg("path"), py::arg("overrides"), py::arg("threads"),
+        "A brush at its steady state: (summary dict, workpiece.csv's, profile.csv's and filaments.csv's text).");
   m.def("impact", &impact, py::arg("path"), py::arg("overrides"),
         "The first impact as a dict (the fields of `rotbeam impact --json`), or None without impact.");
   m.def("modes", &modes, py::arg("path"), py::arg("overrides"), py::arg("speeds_rpm"),

@@ -6,10 +6,18 @@
 #include "rotbeam/brush_output.hpp"
 #include "rotbeam/case.hpp"
 #include "rotbeam/config.hpp"
+#include "rotbeam/pass_output.hpp"
+#include "rotbeam/sweep.hpp"
 
+#include <array>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <gtest/gtest.h>
 #include <numeric>
+#include <sys/wait.h>
+#include <unistd.h>
 
 using namespace rotbeam;
 
@@ -26,6 +34,25 @@ BrushResult brush(const std::vector<std::string>& sets, int threads = 0) {
   BrushOptions o;
   o.threads = threads;
   return run_brush(load_config_string("", sets), o);
+}
+
+namespace fs = std::filesystem;
+
+// The CLI's exit status and its stdout and stderr together.
+std::pair<int, std::string> cli(const std::string& args) {
+  const std::string cmd = std::string(ROTBEAM_CLI) + " " + args + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  std::string out;
+  std::array<char, 4096> buf{};
+  while (std::size_t got = fread(buf.data(), 1, buf.size(), pipe)) out.append(buf.data(), got);
+  const int st = pclose(pipe);
+  return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
+}
+
+std::string fresh(const std::string& name) {
+  const fs::path p = fs::path(::testing::TempDir()) / ("rotbeam_brush_" + name + "_" + std::to_string(getpid()));
+  fs::remove_all(p);
+  return p.string();
 }
 
 double rel(double a, double b) { return std::abs(a - b) / std::max(std::abs(b), 1e-300); }
@@ -69,6 +96,10 @@ TEST(Brush, IdenticalFilamentsGiveNTimesOneFilament) {
         hub += f.hub_angular_impulse_n_m_s;
       }
       EXPECT_LT(rel(normal, n * last.normal_impulse_n_s), 1e-9) << n;
+      // The profile is the mean filament at its own angle: n times it carries the same momentum.
+      double profile = 0;
+      for (const ForceBin& f : b.profile) profile += f.normal_impulse_n_s;
+      EXPECT_LT(rel(n * profile, n * last.normal_impulse_n_s), 1e-12) << n;
       // ω Σ(hub angular impulse) over a revolution is its hub work: the deliveries telescope ΔH_z.
       const double omega = 2.0 * M_PI / period;
       EXPECT_LT(rel(omega * hub, n * last.hub_work_j), 1e-9) << n;
@@ -220,4 +251,69 @@ TEST(Brush, ConfigurationRules) {
                                            "initial.modal_velocity=[0.1,0,0,0,0]", "simulation.revolutions=9",
                                            "simulation.until_steady=true", "output.history_revolutions=\"all\""});
   EXPECT_EQ(revalidate(d).to_json(), d.to_json());
+}
+
+// Brush maps: a sweep over brushes runs one brush per case, writes the brush's columns in sweep.csv,
+// and resumes a finished case from its complete folder.
+TEST(Brush, SweepOverBrushesWritesTheBrushColumnsAndResumes) {
+  const std::string dir = fresh("sweep");
+  SweepOptions options;
+  options.dir = dir;
+  options.jobs = 2;
+  options.base_overrides = {"brush.filaments=2", "beam.damping_ratio=0.05"};
+  const std::vector<SweepAxis> axes = {parse_sweep_axis("surface.depth_fraction=0.01,0.02")};
+  const SweepReport first = run_sweep(axes, options);
+  ASSERT_EQ(first.ran, 2);
+  EXPECT_TRUE(first.brush);
+  std::ifstream in(fs::path(dir) / "sweep.csv");
+  std::string header;
+  std::getline(in, header);
+  EXPECT_EQ(header.rfind("case,folder,surface.depth_fraction,status,mean_normal_force_n,mean_tangential_force_n,", 0), 0u)
+      << header;
+  EXPECT_NE(header.find(",force_ratio,"), std::string::npos);
+  // Deeper, more force; each case's folder is a complete brush.
+  EXPECT_GT(first.results[1].summary["mean_normal_force_n"].get<double>(),
+            first.results[0].summary["mean_normal_force_n"].get<double>());
+  EXPECT_TRUE(complete_run_folder(fs::path(dir) / "case-0001"));
+  const SweepReport second = run_sweep(axes, options);
+  EXPECT_EQ(second.resumed, 2);
+  EXPECT_EQ(second.results[0].summary["mean_normal_force_n"], first.results[0].summary["mean_normal_force_n"]);
+  // A damaged table makes its case incomplete: it runs again.
+  {
+    std::ofstream damage(fs::path(dir) / "case-0002" / "profile.csv", std::ios::app);
+    damage << "x";
+  }
+  const SweepReport third = run_sweep(axes, options);
+  EXPECT_EQ(third.resumed, 1);
+  EXPECT_EQ(third.ran, 1);
+  fs::remove_all(dir);
+}
+
+// The command line: `brush` writes its files; the one-filament commands refuse a brush; a brush
+// needs its section; a run folder is not overwritten by a brush, nor a brush folder by a run.
+TEST(Brush, CommandLine) {
+  const std::string dir = fresh("cli");
+  auto [code, out] = cli("brush --set brush.filaments=2 --set beam.damping_ratio=0.05 --quiet -o " + dir);
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("2 steady, 0 not steady, 0 failed, 0 clear"), std::string::npos) << out;
+  for (const char* f : {"workpiece.csv", "profile.csv", "filaments.csv", "summary.json"})
+    EXPECT_TRUE(fs::exists(fs::path(dir) / f)) << f;
+  EXPECT_TRUE(complete_run_folder(dir));
+  std::tie(code, out) = cli("run --set brush.filaments=2 -o " + dir + "-run");
+  EXPECT_EQ(code, 2);
+  EXPECT_NE(out.find("rotbeam brush"), std::string::npos) << out;
+  EXPECT_FALSE(fs::exists(dir + "-run"));
+  std::tie(code, out) = cli("impact --set brush.rows=2");
+  EXPECT_EQ(code, 2);
+  std::tie(code, out) = cli("brush -o " + dir + "-none");
+  EXPECT_EQ(code, 2);
+  EXPECT_NE(out.find("no [brush] section"), std::string::npos) << out;
+  std::tie(code, out) = cli("run -o " + dir);
+  EXPECT_EQ(code, 2);
+  EXPECT_NE(out.find("holds a brush"), std::string::npos) << out;
+  EXPECT_TRUE(complete_run_folder(dir));  // untouched
+  std::tie(code, out) = cli("brush --set brush.filaments=2 --set brush.seed=-3 -o " + dir);
+  EXPECT_EQ(code, 2);
+  EXPECT_NE(out.find("brush.seed = -3"), std::string::npos) << out;
+  fs::remove_all(dir);
 }

@@ -91,6 +91,10 @@ struct BrushResult {
   std::vector<BrushFilament> filaments;
   std::vector<FilamentSteadyState> distinct;  // by group
   std::vector<ForceBin> workpiece;            // every bin of one revolution of the reference hub angle
+  // The force profile across the contact zone: the filaments' deliveries at their own relative angle
+  // (0° where a filament points at the surface's deepest point), summed and divided by the number of
+  // filaments: the mean filament's force against its angle (impacts counted per filament, summed).
+  std::vector<ForceBin> profile;
   BrushSummary summary;
 };
 

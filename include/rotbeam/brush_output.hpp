@@ -1,5 +1,6 @@
 // Files of a brush (docs/brush.md): workpiece.csv (the force, torque and power on the workpiece
-// over one revolution), filaments.csv (one row per filament) and summary.json, written last, with
+// over one revolution), profile.csv (the mean filament across the contact zone), filaments.csv
+// (one row per filament) and summary.json, written last, with
 // the sizes of the other two, so that a folder holds a summary only beside the complete files.
 #pragma once
 
@@ -14,6 +15,9 @@ namespace rotbeam {
 
 /// workpiece.csv: one row per bin of output.bin_deg over the reference hub angle (−180°, 180°].
 std::string workpiece_csv(const BrushResult& result, double omega);
+/// profile.csv: the mean filament's force against its own angle (every bin of the revolution; the
+/// contact zone is where it is not zero), with workpiece.csv's columns.
+std::string profile_csv(const BrushResult& result, double omega);
 /// filaments.csv: one row per filament: its place, parameters and steady-state means.
 std::string filaments_csv(const BrushResult& result);
 /// summary.json of a brush: "kind": "brush", the metrics, the filaments' counts, warnings, the

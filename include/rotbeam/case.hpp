@@ -22,7 +22,7 @@ struct Case {
 };
 
 /// Builds the case a (validated) configuration describes. Throws ConfigError naming the key when
-/// a value is outside what the model can build.
+/// a value is outside what the model can build, and for a brush's configuration (brush.hpp runs it).
 Case build_case(const Config& config);
 
 /// Runs the case's pass (PassControl: where rows and events go, and the stop token); with

@@ -37,7 +37,8 @@ except ImportError:
 from ._core import ConfigError, config_keys
 from . import _core
 
-__all__ = ["run", "impact", "modes", "Result", "ConfigError", "ConfigFileNotFoundError", "config_keys"]
+__all__ = ["run", "impact", "modes", "brush", "Result", "BrushResult", "ConfigError", "ConfigFileNotFoundError",
+           "config_keys"]
 
 
 _EMPTY_PATH = '""'  # how a message shows the empty path
@@ -178,6 +179,71 @@ def run(config=None, overrides=None):
     path, sets = _arguments(config, overrides)
     summary, history, events, revolutions, force_bins = _core.run(path, sets)
     return Result(summary, history, events, _table_arrays(revolutions), _table_arrays(force_bins))
+
+
+def _csv_columns(text):
+    """A CSV table's text as {column: numpy array}: integers, booleans (true/false) and strings where
+    every value is one, floats otherwise ("nan" included)."""
+    import numpy as np
+    lines = text.decode().splitlines()
+    names = lines[0].split(",")
+    rows = [line.split(",") for line in lines[1:]]
+    out = {}
+    for k, name in enumerate(names):
+        values = [r[k] for r in rows]
+        if values and all(v in ("true", "false") for v in values):
+            out[name] = np.array([v == "true" for v in values], dtype=bool)
+            continue
+        try:
+            out[name] = np.array([int(v) for v in values], dtype=np.int64)
+            continue
+        except ValueError:
+            pass
+        try:
+            out[name] = np.array([float(v) for v in values], dtype=float)
+        except ValueError:
+            out[name] = np.array(values, dtype=str)
+    return out
+
+
+class BrushResult:
+    """A brush at its steady state (`rotbeam brush`, docs/brush.md): `summary` (the keys of its
+    summary.json), `workpiece` (numpy arrays by the columns of workpiece.csv: the force, torque and
+    power on the workpiece in hub-angle bins over one revolution), `profile` (the same columns for the
+    mean filament against its own angle across the contact zone, profile.csv) and `filaments` (numpy
+    arrays by the columns of filaments.csv, one entry per filament). The tables are dicts of
+    equal-length arrays: pandas.DataFrame(r.workpiece) makes a data frame of one."""
+
+    def __init__(self, summary, workpiece, profile, filaments):
+        self.summary = summary
+        self.workpiece = workpiece
+        self.profile = profile
+        self.filaments = filaments
+
+    @property
+    def failure(self):
+        """None, or {kind, filament, t_s, theta_deg, message} of the first filament that failed."""
+        return self.summary.get("failure")
+
+    def __repr__(self):
+        s = self.summary
+        return (f"<rotbeam.BrushResult {s['filaments']} filaments ({s['distinct_filaments']} distinct): mean force "
+                f"{s['mean_normal_force_n']:.6g} N normal, {s['mean_tangential_force_n']:.6g} N tangential, "
+                f"mean power {s['mean_hub_power_w']:.6g} W"
+                f"{', failure: ' + s['failure']['kind'] if s.get('failure') else ''}>")
+
+
+def brush(config=None, overrides=None, jobs=0):
+    """A brush (`rotbeam brush`): every distinct filament run to its periodic steady state on `jobs`
+    threads (0: all cores), and the sum on the workpiece. The configuration needs the [brush] keys,
+    e.g. overrides={"brush.filaments": 24, "beam.damping_ratio": 0.05}. Returns a BrushResult; a
+    filament's numerical failure is reported in BrushResult.failure (the sums hold the others).
+    Ctrl-C stops the filaments under way and raises KeyboardInterrupt."""
+    if isinstance(jobs, bool) or not isinstance(jobs, int):
+        raise TypeError(f"jobs must be a whole number of threads (0: all cores), not {jobs!r}")
+    path, sets = _arguments(config, overrides)
+    summary, workpiece, profile, filaments = _core.brush(path, sets, jobs)
+    return BrushResult(summary, _csv_columns(workpiece), _csv_columns(profile), _csv_columns(filaments))
 
 
 def impact(config=None, overrides=None):

@@ -49,6 +49,8 @@ except ImportError as missing:
 
 DEG = "°"
 
+from .brush_plots import DamagedBrush, brush_figures, brush_map_figure, read_brush  # noqa: E402
+
 
 def remove_stale_temporaries(path):
     """Removes the temporaries `.NAME.PID.tmp[.EXT]` that a killed writer of `path` left beside it
@@ -890,10 +892,40 @@ def sweep_force_figure(folder, table, keys, ok, folders, runs=None):
     return fig
 
 
+def is_brush_folder(folder):
+    """True when folder's summary.json is a brush's (`rotbeam brush`)."""
+    try:
+        return json.loads((Path(folder) / "summary.json").read_text()).get("kind") == "brush"
+    except (ValueError, AttributeError, OSError):
+        return False
+
+
+def plot_brush_sweep(folder, out, table, keys, ok, cases):
+    """brush_map.png of a sweep over brushes (and each case's brush pictures with --cases), every
+    case with results read and checked first."""
+    folders = [f for f, good in zip(table["folder"], ok) if good]
+    checked = {f: brush_figures(folder / f) for f in folders} if cases else {}
+    for f in folders:
+        if not cases:
+            read_brush(folder / f)
+    title = f"Brush map: {len(table['case'])} brushes over {', '.join(keys)}{_cases_note(table, ok)}"
+    figures = [("brush_map", brush_map_figure(table, keys, ok, title, series_styles, value_text, _legend_beside))]
+    written = save_figures(figures, out)
+    for f, figs in checked.items():
+        written += save_figures(figs, out / f)
+    return written
+
+
 def plot_sweep(folder, out, cases=False):
     """The pictures of a sweep folder into out; every case with results is read and checked first
     (read_run), so a damaged one is named before the folder out is made and anything is written."""
     folder, out = Path(folder), Path(out)
+    if "force_ratio" in read_csv(folder / "sweep.csv"):  # a sweep over brushes (docs/brush.md)
+        table = read_csv(folder / "sweep.csv")
+        columns = list(table)
+        keys = columns[columns.index("folder") + 1:columns.index("status")]
+        ok = np.isin(table["status"], ["done", "resumed", "failed"])
+        return plot_brush_sweep(folder, out, table, keys, ok, cases)
     table, keys, ok = read_sweep(folder)
     folders = [f for f, good in zip(table["folder"], ok) if good and (folder / f / "history.csv").exists()]
     drawn = folders if folders and len(folders) <= 24 else []
@@ -967,6 +999,8 @@ def main(argv=None):
             written = plot_campbell(args.folder, args.campbell)
         elif (folder / "sweep.csv").exists():
             written = plot_sweep(folder, out, args.cases)
+        elif (folder / "summary.json").exists() and is_brush_folder(folder):
+            written = save_figures(brush_figures(folder), out)
         elif (folder / "summary.json").exists():
             written = plot_run(folder, out)
         elif not folder.exists():
@@ -976,7 +1010,7 @@ def main(argv=None):
             print(f"rotbeam: error: {folder}: neither a run folder (summary.json) nor a sweep folder (sweep.csv)",
                   file=sys.stderr)
             return 2
-    except (DamagedFolder, OutputFolderError) as e:
+    except (DamagedFolder, DamagedBrush, OutputFolderError) as e:
         print(f"rotbeam: error: {e}", file=sys.stderr)
         return 2
     except OSError as e:  # before ValueError: some OSErrors are not, but say what file and why

@@ -23,16 +23,17 @@ void put(std::string& out, double v) {
 
 nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
-constexpr const char* kFiles[] = {"workpiece.csv", "filaments.csv", "summary.json"};
+constexpr const char* kFiles[] = {"workpiece.csv", "profile.csv", "filaments.csv", "summary.json"};
 constexpr const char* kPictures[] = {"brush_force.png", "brush_profile.png", "brush_filaments.png"};
 
 }  // namespace
 
-std::string workpiece_csv(const BrushResult& result, double omega) {
+namespace {
+std::string bins_csv(const std::vector<ForceBin>& bins, double omega) {
   std::string out =
       "theta_from_deg,theta_to_deg,normal_impulse_n_s,tangential_impulse_n_s,normal_force_n,tangential_force_n,"
       "hub_angular_impulse_n_m_s,hub_torque_n_m,hub_power_w,impacts\n";
-  for (const ForceBin& b : result.workpiece) {
+  for (const ForceBin& b : bins) {
     for (double v : {b.from_deg, b.to_deg, b.normal_impulse_n_s, b.tangential_impulse_n_s, b.mean_normal_force_n,
                      b.mean_tangential_force_n, b.hub_angular_impulse_n_m_s, b.mean_hub_torque_n_m,
                      b.mean_hub_torque_n_m * omega}) {
@@ -44,6 +45,11 @@ std::string workpiece_csv(const BrushResult& result, double omega) {
   }
   return out;
 }
+}  // namespace
+
+std::string workpiece_csv(const BrushResult& result, double omega) { return bins_csv(result.workpiece, omega); }
+
+std::string profile_csv(const BrushResult& result, double omega) { return bins_csv(result.profile, omega); }
 
 std::string filaments_csv(const BrushResult& result) {
   std::string out =
@@ -158,11 +164,15 @@ BrushFiles::~BrushFiles() = default;
 void BrushFiles::commit(const BrushResult& result, const Config& config) {
   const double omega = config.beam.speed_rpm * M_PI / 30.0;
   const std::string workpiece = workpiece_csv(result, omega);
+  const std::string profile = profile_csv(result, omega);
   const std::string filaments = filaments_csv(result);
   write_file_atomically(dir_ / "workpiece.csv", workpiece);
+  write_file_atomically(dir_ / "profile.csv", profile);
   write_file_atomically(dir_ / "filaments.csv", filaments);
   nlohmann::json j = brush_summary_json(result, config);
-  j["files"] = {{"workpiece.csv", {{"bytes", workpiece.size()}}}, {"filaments.csv", {{"bytes", filaments.size()}}}};
+  j["files"] = {{"workpiece.csv", {{"bytes", workpiece.size()}}},
+                {"profile.csv", {{"bytes", profile.size()}}},
+                {"filaments.csv", {{"bytes", filaments.size()}}}};
   write_file_atomically(dir_ / "summary.json", j.dump(2) + "\n");
 }
 

@@ -87,10 +87,11 @@ double clock_s() {
 }
 
 // One distinct filament run to its steady state; its deliveries over the orbit go into `bins` once
-// per copy, shifted by the copy's phase and weighted 1/m.
+// per copy, shifted by the copy's phase and weighted 1/m, and into `profile` at the filament's own
+// angle, weighted (copies)/m.
 FilamentSteadyState run_distinct(const Config& base, const BrushFilament& representative,
                                  const std::vector<const BrushFilament*>& copies, ForceBins& bins,
-                                 const StopToken* stop) {
+                                 ForceBins& profile, const StopToken* stop) {
   FilamentSteadyState s;
   const double start = clock_s();
   Config config;
@@ -156,6 +157,8 @@ FilamentSteadyState run_distinct(const Config& base, const BrushFilament& repres
   for (const BrushFilament* f : copies)
     for (const auto* rev : orbit)
       for (const MomentumDelivery& d : rev->first) bins.add(d, f->phase_deg, weight);
+  for (const auto* rev : orbit)
+    for (const MomentumDelivery& d : rev->first) profile.add(d, 0.0, weight * static_cast<double>(copies.size()));
   return s;
 }
 
@@ -214,11 +217,11 @@ BrushResult run_brush(const Config& config, const BrushOptions& options) {
   }
 
   const double omega = config.beam.speed_rpm * M_PI / 30.0;
-  ForceBins total(config.simulation.bin_deg, omega);
+  ForceBins total(config.simulation.bin_deg, omega), profile(config.simulation.bin_deg, omega);
   // Each group's bins are summed into the total in group order, whatever order the groups finish
   // in, so the result does not depend on the thread count.
   std::mutex mutex;
-  std::map<int, ForceBins> finished_bins;
+  std::map<int, std::pair<ForceBins, ForceBins>> finished_bins;
   std::size_t next_to_merge = 0;
   BrushProgress progress;
   progress.total = static_cast<int>(todo.size());
@@ -229,15 +232,16 @@ BrushResult run_brush(const Config& config, const BrushOptions& options) {
       todo.size(),
       [&](std::size_t j) {
         const int g = todo[j];
-        ForceBins bins(config.simulation.bin_deg, omega);
-        FilamentSteadyState s = run_distinct(config, *representative[g], copies[g], bins, options.stop);
+        ForceBins bins(config.simulation.bin_deg, omega), own(config.simulation.bin_deg, omega);
+        FilamentSteadyState s = run_distinct(config, *representative[g], copies[g], bins, own, options.stop);
         std::lock_guard<std::mutex> lock(mutex);
         result.distinct[g] = std::move(s);
-        finished_bins.emplace(static_cast<int>(j), std::move(bins));
+        finished_bins.emplace(static_cast<int>(j), std::make_pair(std::move(bins), std::move(own)));
         while (next_to_merge < todo.size()) {
           const auto it = finished_bins.find(static_cast<int>(next_to_merge));
           if (it == finished_bins.end()) break;
-          total.merge(it->second);
+          total.merge(it->second.first);
+          profile.merge(it->second.second);
           finished_bins.erase(it);
           ++next_to_merge;
         }
@@ -248,6 +252,17 @@ BrushResult run_brush(const Config& config, const BrushOptions& options) {
       },
       runner);
   result.workpiece = total.full_table();
+  result.profile = profile.full_table();
+  // The mean filament: the sum at the filaments' own angles over their number.
+  const double per = 1.0 / static_cast<double>(std::max<std::size_t>(1, result.filaments.size()));
+  for (ForceBin& b : result.profile) {
+    b.normal_impulse_n_s *= per;
+    b.tangential_impulse_n_s *= per;
+    b.mean_normal_force_n *= per;
+    b.mean_tangential_force_n *= per;
+    b.hub_angular_impulse_n_m_s *= per;
+    b.mean_hub_torque_n_m *= per;
+  }
 
   BrushSummary& s = result.summary;
   s.filaments = static_cast<int>(result.filaments.size());

@@ -10,6 +10,9 @@
 namespace rotbeam {
 
 Case build_case(const Config& config) {
+  if (config.brush)
+    throw ConfigError("brush: this configuration describes a brush ([brush]), which runs as a whole "
+                      "(rotbeam brush, rotbeam.brush), not as one filament's pass");
   Case c;
   try {
     auto beam = std::make_shared<ForeshorteningBeam>(make_beam(config.beam));

@@ -338,12 +338,13 @@ def documented_keys():
 
 
 def example_keys():
-    """The keys thesis-base.toml sets, and those it shows commented out (`# key = …` in a section)."""
+    """The keys thesis-base.toml sets, and those it shows commented out (`# key = …` in a section, which
+    may be a commented-out `# [section]` too: the brush's, whose keys make a case a brush)."""
     path = ROOT / "examples" / "thesis-base.toml"
     keys = {f"{section}.{key}" for section, table in tomllib.loads(path.read_text()).items() for key in table}
     section = None
     for line in path.read_text().splitlines():
-        if m := re.match(r"\[(\w+)\]", line):
+        if m := re.match(r"(?:#\s*)?\[(\w+)\]", line):
             section = m.group(1)
         elif m := re.match(r"#\s*(\w+)\s*=", line):
             keys.add(f"{section}.{m.group(1)}")

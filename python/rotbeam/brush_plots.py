@@ -1,0 +1,226 @@
+"""Pictures of a brush folder (`rotbeam brush`, docs/brush.md) and of a sweep over brushes.
+
+A brush folder (summary.json with "kind": "brush", workpiece.csv, profile.csv, filaments.csv) gives
+brush_force.png (the force on the workpiece and the hub's torque against hub angle over one
+revolution), brush_profile.png (the mean filament's force across the contact zone) and
+brush_filaments.png (each filament's mean force against its length and its phase). A sweep over
+brushes gives brush_map.png: the brush's mean forces, power, peak force, contact zone and force
+ratio against the first varied key, a line per value of the others (force against depth, a line
+per speed: the brush-stiffness curves brush makers measure).
+"""
+
+import json
+from pathlib import Path
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+DEG = "°"
+
+
+class DamagedBrush(Exception):
+    """A brush folder whose files are not those its summary.json describes."""
+
+
+def _read_table(path):
+    """A CSV table as {column: array}: numbers as floats, "true"/"false" as booleans, other words as
+    strings; a row with the wrong number of fields raises DamagedBrush naming the file and line."""
+    lines = Path(path).read_text().splitlines()
+    if not lines:
+        raise DamagedBrush(f"{path}: empty")
+    names = lines[0].split(",")
+    rows = []
+    for i, line in enumerate(lines[1:], start=2):
+        fields = line.split(",")
+        if len(fields) != len(names):
+            raise DamagedBrush(f"{path}: line {i} has {len(fields)} fields where the header names {len(names)}")
+        rows.append(fields)
+    out = {}
+    for k, name in enumerate(names):
+        values = [r[k] for r in rows]
+        if values and all(v in ("true", "false") for v in values):
+            out[name] = np.array([v == "true" for v in values])
+            continue
+        try:
+            out[name] = np.array([float(v) for v in values], dtype=float)
+        except ValueError:
+            if name in ("status",):
+                out[name] = np.array(values, dtype=str)
+            else:
+                bad = next(v for v in values if not _is_number(v))
+                raise DamagedBrush(f"{path}: column {name} holds {bad!r}, not a number") from None
+    return out
+
+
+def _is_number(v):
+    try:
+        float(v)
+        return True
+    except ValueError:
+        return False
+
+
+def read_brush(folder):
+    """(summary, workpiece, profile, filaments) of a brush folder, checked: summary.json is a brush's
+    and every file it lists has the size it records."""
+    folder = Path(folder)
+    try:
+        summary = json.loads((folder / "summary.json").read_text())
+    except json.JSONDecodeError as e:
+        raise DamagedBrush(f"{folder / 'summary.json'}: not valid JSON ({e})") from None
+    if not isinstance(summary, dict) or summary.get("kind") != "brush" or not isinstance(summary.get("files"), dict):
+        raise DamagedBrush(f"{folder / 'summary.json'}: not a rotbeam brush summary")
+    for name, entry in summary["files"].items():
+        path = folder / name
+        if not path.exists():
+            raise DamagedBrush(f"{path}: missing (summary.json lists it)")
+        if path.stat().st_size != entry.get("bytes"):
+            raise DamagedBrush(f"{path}: {path.stat().st_size} bytes where summary.json records {entry.get('bytes')}: "
+                               "the folder holds files of different runs, or a damaged one")
+    tables = [_read_table(folder / name) for name in ("workpiece.csv", "profile.csv", "filaments.csv")]
+    return (summary, *tables)
+
+
+def _title(summary):
+    c = summary["config"]
+    b = c["brush"]
+    return (f"Brush of {summary['filaments']} filaments ({b['filaments']} around × {b['rows']} rows, "
+            f"{summary['distinct_filaments']} distinct), {c['hub']['speed_rpm']:g} rpm, depth "
+            f"{100 * c['surface']['depth_fraction']:g} %, μ = {c['surface']['friction']:g}")
+
+
+def _centres(table):
+    return 0.5 * (table["theta_from_deg"] + table["theta_to_deg"])
+
+
+def force_figure(summary, workpiece):
+    """brush_force.png: the workpiece's normal and tangential force and the hub torque per bin."""
+    fig, (ax, ax2) = plt.subplots(2, 1, figsize=(11, 7), sharex=True)
+    x = _centres(workpiece)
+    ax.step(x, workpiece["normal_force_n"], where="mid", lw=1, label="normal")
+    ax.step(x, workpiece["tangential_force_n"], where="mid", lw=1, label="tangential (along +Y)")
+    ax.axhline(summary["mean_normal_force_n"], color="C0", ls="--", lw=0.8,
+               label=f"mean normal {summary['mean_normal_force_n']:.4g} N")
+    ax.set_ylabel(f"force on the workpiece (N)\nmomentum per {summary['bin_deg']:g}{DEG} bin / its duration")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, loc="upper right")
+    ax2.step(x, workpiece["hub_torque_n_m"] * 1e3, where="mid", lw=1, color="C2")
+    ax2.axhline(summary["mean_hub_torque_n_m"] * 1e3, color="C2", ls="--", lw=0.8,
+                label=f"mean {summary['mean_hub_torque_n_m'] * 1e3:.4g} mN·m, power {summary['mean_hub_power_w']:.4g} W")
+    ax2.set_ylabel("hub torque on the filaments (mN·m)")
+    ax2.set_xlabel(f"hub angle of the reference filament from the surface's deepest point ({DEG})")
+    ax2.grid(alpha=0.3)
+    ax2.legend(fontsize=8, loc="upper right")
+    ax2.set_xlim(-180, 180)
+    fig.suptitle(_title(summary) + "\nover one revolution at the filaments' steady state", fontsize=10)
+    fig.tight_layout()
+    return fig
+
+
+def profile_figure(summary, profile):
+    """brush_profile.png: the mean filament's force against its own angle across the contact zone."""
+    fig, ax = plt.subplots(figsize=(9, 5))
+    if len(profile["theta_from_deg"]) == 0:
+        ax.text(0.5, 0.5, "no filament touched the surface", transform=ax.transAxes, ha="center", va="center")
+    else:
+        x = _centres(profile)
+        ax.step(x, profile["normal_force_n"], where="mid", lw=1.2, label="normal")
+        ax.step(x, profile["tangential_force_n"], where="mid", lw=1.2, label="tangential (along +Y)")
+        zone = summary["contact_zone"]
+        ax.axvspan(zone["from_deg"], zone["to_deg"], color="0.9", zorder=0,
+                   label=f"contact zone {zone['angle_deg']:.3g}{DEG}, {zone['width_m'] * 1e3:.3g} mm along the surface")
+        ax.legend(fontsize=8)
+        touched = np.flatnonzero((profile["normal_impulse_n_s"] != 0) | (profile["tangential_impulse_n_s"] != 0))
+        if touched.size:  # the zone and a margin of half its width (at least 5°) either side
+            lo, hi = profile["theta_from_deg"][touched[0]], profile["theta_to_deg"][touched[-1]]
+            margin = max(5.0, 0.5 * (hi - lo))
+            ax.set_xlim(max(-180.0, lo - margin), min(180.0, hi + margin))
+        else:
+            ax.text(0.5, 0.5, "no filament touched the surface", transform=ax.transAxes, ha="center", va="center")
+    ax.set_xlabel(f"filament angle from the surface's deepest point ({DEG})")
+    ax.set_ylabel(f"mean force per filament (N)\nmomentum per {summary['bin_deg']:g}{DEG} bin / its duration")
+    ax.grid(alpha=0.3)
+    ax.set_title(_title(summary) + "\nthe force profile across the contact zone: every filament at its own angle, "
+                 "divided by their number", fontsize=9)
+    fig.tight_layout()
+    return fig
+
+
+def filaments_figure(summary, filaments):
+    """brush_filaments.png: each filament's mean normal force against its length and its phase."""
+    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(12, 5))
+    status = filaments["status"]
+    groups = [("steady", "C0", "o"), ("not_steady", "C1", "s"), ("clear", "0.6", "x"), ("failed", "C3", "^"),
+              ("error", "C3", "v"), ("interrupted", "C4", "D")]
+    for name, color, marker in groups:
+        sel = status == name
+        if not sel.any():
+            continue
+        label = f"{name.replace('_', ' ')} ({sel.sum()})"
+        ax.plot(filaments["length_m"][sel] * 1e3, filaments["mean_normal_force_n"][sel], marker, color=color, ms=4,
+                label=label, ls="none")
+        ax2.plot(np.mod(filaments["phase_deg"][sel], 360), filaments["mean_normal_force_n"][sel], marker,
+                 color=color, ms=4, label=label, ls="none")
+    ax.set_xlabel("filament length (mm)")
+    ax2.set_xlabel(f"filament phase ahead of the reference ({DEG})")
+    for a in (ax, ax2):
+        a.set_ylabel("mean normal force over a revolution (N)")
+        a.grid(alpha=0.3)
+        a.legend(fontsize=8)
+    fig.suptitle(_title(summary) + "\neach filament at its steady state (clear: too short to reach the surface)",
+                 fontsize=10)
+    fig.tight_layout()
+    return fig
+
+
+def brush_figures(folder):
+    """[(name, figure)] of a brush folder, every file read and checked before any is drawn."""
+    summary, workpiece, profile, filaments = read_brush(folder)
+    figures = []
+    try:
+        figures.append(("brush_force", force_figure(summary, workpiece)))
+        figures.append(("brush_profile", profile_figure(summary, profile)))
+        figures.append(("brush_filaments", filaments_figure(summary, filaments)))
+    except BaseException:
+        for _, fig in figures:
+            plt.close(fig)
+        raise
+    return figures
+
+
+def brush_map_figure(table, keys, ok, title, styles_of, value_text, legend_beside):
+    """brush_map.png for a sweep over brushes: six of sweep.csv's brush columns against the first
+    varied key, a line per value of the others (styles_of, value_text and legend_beside are the
+    sweep pictures' helpers, so both kinds of sweep look alike)."""
+    first, rest = keys[0], keys[1:]
+    x = table[first]
+    groups = list(dict.fromkeys(tuple(table[k][i] for k in rest) for i in range(len(x)) if ok[i]))
+    try:
+        groups.sort()
+    except TypeError:
+        pass
+    styles = styles_of(groups) if rest else [{"color": "C0", "linestyle": "-", "marker": "o"}] * len(groups)
+    fig, axes = plt.subplots(2, 3, figsize=(14, 7.5))
+    for ax, (metric, scale, label) in zip(axes.flat, [
+            ("mean_normal_force_n", 1, "mean normal force (N)"),
+            ("mean_tangential_force_n", 1, "mean tangential force (N)"),
+            ("mean_hub_power_w", 1, "mean hub power (W)"),
+            ("peak_normal_force_n", 1, "peak binned normal force (N)"),
+            ("contact_zone_width_m", 1e3, "contact zone along the surface (mm)"),
+            ("force_ratio", 1, "mean normal force per filament\n/ (3EI·pL/L³)")]):
+        for g, style in zip(groups, styles):
+            sel = ok.copy()
+            for k, v in zip(rest, g):
+                sel &= table[k] == v
+            order = np.argsort(x[sel].astype(float)) if x.dtype.kind == "f" else np.arange(sel.sum())
+            label_g = ", ".join(f"{k} = {value_text(v)}" for k, v in zip(rest, g)) or None
+            ax.plot(x[sel][order], table[metric][sel][order] * scale, ms=4, label=label_g, **style)
+        ax.set_xlabel(first)
+        ax.set_ylabel(label)
+        ax.grid(alpha=0.3)
+        if not ok.any():
+            ax.text(0.5, 0.5, "no case has results", transform=ax.transAxes, ha="center", va="center")
+    fig.suptitle(title, fontsize=10)
+    right = legend_beside(fig, *axes[0, 0].get_legend_handles_labels(), fontsize=8) if rest and ok.any() else 1.0
+    fig.tight_layout(rect=(0, 0, right, 1))
+    return fig
