@@ -908,7 +908,16 @@ def plot_brush_sweep(folder, out, table, keys, ok, cases):
     for f in folders:
         if not cases:
             read_brush(folder / f)
-    title = f"Brush map: {len(table['case'])} brushes over {', '.join(keys)}{_cases_note(table, ok)}"
+    n = len(table["case"])
+    missing = [i for i in range(n) if not ok[i]]
+    note = ""
+    if missing:
+        named = ", ".join(f"{table['folder'][i]} ({table['status'][i]}"
+                          f"{': ' + table['message'][i].split(':')[0] if table['message'][i] else ''})"
+                          for i in missing[:4])
+        note = (f"\n{len(missing)} of {n} brushes not drawn (a filament failed, so the sums would leave it out; "
+                f"or no results): {named}{', …' if len(missing) > 4 else ''}")
+    title = f"Brush map: {n} brushes over {', '.join(keys)}{note}"
     figures = [("brush_map", brush_map_figure(table, keys, ok, title, series_styles, value_text, _legend_beside))]
     written = save_figures(figures, out)
     for f, figs in checked.items():
@@ -924,7 +933,8 @@ def plot_sweep(folder, out, cases=False):
         table = read_csv(folder / "sweep.csv")
         columns = list(table)
         keys = columns[columns.index("folder") + 1:columns.index("status")]
-        ok = np.isin(table["status"], ["done", "resumed", "failed"])
+        # A brush with a failed filament has sums without it: only whole brushes are drawn.
+        ok = np.isin(table["status"], ["done", "resumed"])
         return plot_brush_sweep(folder, out, table, keys, ok, cases)
     table, keys, ok = read_sweep(folder)
     folders = [f for f, good in zip(table["folder"], ok) if good and (folder / f / "history.csv").exists()]
