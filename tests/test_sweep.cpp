@@ -15,6 +15,10 @@ TEST(SweepAxis, ListsAndRanges) {
             (std::vector<std::string>{"0.1", "0.3", "0.5", "0.7"}));
   EXPECT_EQ(parse_sweep_axis("beam.modes=3:12:4").values, (std::vector<std::string>{"3", "6", "9", "12"}));
   EXPECT_EQ(parse_sweep_axis("hub.speed_rpm=550:550:1").values, (std::vector<std::string>{"550"}));
+  // Spaces around the key are dropped, as by --set (it was an unknown key, "did you mean" itself).
+  EXPECT_EQ(parse_sweep_axis(" hub.speed_rpm =550").key, "hub.speed_rpm");
+  // Ends whose difference overflows (-1e308:1e308 gave nan for every value).
+  EXPECT_EQ(parse_sweep_axis("hub.speed_rpm=-1e308:1e308:3").values, (std::vector<std::string>{"-1e+308", "0", "1e+308"}));
   // Commas inside arrays and strings do not split.
   EXPECT_EQ(parse_sweep_axis("initial.modal_velocity=[0.1,0,0,0,0],[0,0.1,0,0,0]").values,
             (std::vector<std::string>{"[0.1,0,0,0,0]", "[0,0.1,0,0,0]"}));

@@ -129,6 +129,10 @@ SweepAxis parse_sweep_axis(const std::string& spec) {
     throw ConfigError("--vary " + spec + ": expected KEY=V1,V2,… or KEY=A:B:N");
   SweepAxis axis;
   axis.key = spec.substr(0, eq);
+  // Spaces around the key are not part of it, as for --set (" hub.speed_rpm" was an unknown key
+  // whose suggestion read the same).
+  axis.key.erase(0, axis.key.find_first_not_of(" \t"));
+  axis.key.erase(axis.key.find_last_not_of(" \t") + 1);
   require_known_key(axis.key, "--vary");
   const std::string rest = spec.substr(eq + 1);
   if (rest.find_first_of("\n\r") != std::string::npos)
@@ -148,7 +152,13 @@ SweepAxis parse_sweep_axis(const std::string& spec) {
     const double a = number(parts[0]), b = number(parts[1]), nd = number(parts[2]);
     if (nd < 1 || nd != std::floor(nd) || nd > 100000) throw ConfigError("--vary " + spec + ": N must be a whole number from 1 to 100000");
     const int n = static_cast<int>(nd);
-    for (int i = 0; i < n; ++i) axis.values.push_back(number_literal(n == 1 ? a : a + (b - a) * i / (n - 1)));
+    // B − A overflows for ends near the largest double (-1e308:1e308 gave nan): then each value is
+    // weighed from both ends instead.
+    const bool wide = !std::isfinite(b - a);
+    for (int i = 0; i < n; ++i) {
+      const double f = n == 1 ? 0.0 : static_cast<double>(i) / (n - 1);
+      axis.values.push_back(number_literal(n == 1 ? a : wide ? a * (1.0 - f) + b * f : a + (b - a) * i / (n - 1)));
+    }
   } else {
     for (const std::string& v : split_top_level(rest)) {
       if (v.empty()) throw ConfigError("--vary " + spec + ": an empty value");
@@ -243,7 +253,17 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
   for (std::size_t i = 0; i < report.cases.size(); ++i) {
     nlohmann::json j;
     bool finished = false;
-    if (complete_run_folder(options.dir / report.cases[i].folder, &j) && resumable_summary(j)) {
+    // A case folder that is a link (to another case's folder, say) is not this case's: a resume
+    // wrote through it into the other case's folder, and sweep.csv no longer described the files.
+    // The link is removed and the case run into a folder of its own.
+    const std::filesystem::path folder = options.dir / report.cases[i].folder;
+    std::error_code link_ec;
+    if (std::filesystem::is_symlink(std::filesystem::symlink_status(folder, link_ec))) {
+      std::filesystem::remove(folder, link_ec);
+      if (link_ec)
+        throw ConfigError(folder.string() + ": a link where the case's folder goes, and it cannot be removed (" +
+                          link_ec.message() + ")");
+    } else if (complete_run_folder(folder, &j) && resumable_summary(j)) {
       const bool interrupted = j["failure"].is_object() && j["failure"]["kind"] == "interrupted";
       if (!interrupted && j["config"] == configs[i].to_json()) {
         report.results[i].summary = j;
