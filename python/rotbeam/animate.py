@@ -180,12 +180,24 @@ def animate(folder, output=None, frames=None, frames_per_degree=None, window=Non
     if magnify <= 0 or not math.isfinite(magnify):
         raise ValueError(f"magnify = {magnify:g}: must be a positive number")
     lo, hi = window if window is not None else default_window(history, events, summary)
+    if not (math.isfinite(lo) and math.isfinite(hi)):
+        raise ValueError(f"window {lo:g}:{hi:g}: must be finite hub angles")
     if not hi > lo:
         raise ValueError(f"window {lo:g}:{hi:g}: the end angle must exceed the start")
+    # A window is drawn over the angles the history recorded: beyond them there is nothing to show,
+    # and -1e308:1e308 overflowed in matplotlib's transforms (a traceback).
+    recorded = history["theta_deg"]
+    first, last = float(np.min(recorded)), float(np.max(recorded))
+    if hi < first or lo > last:
+        raise ValueError(f"window {lo:g}:{hi:g}: no history rows in it (the run recorded {first:.6g}° … {last:.6g}°)")
+    lo, hi = max(lo, first), min(hi, last)
     if frames_per_degree is not None:
         if not frames_per_degree > 0:
             raise ValueError(f"frames per degree = {frames_per_degree:g}: must be positive")
         frames = math.ceil(frames_per_degree * (hi - lo))
+        if not 2 <= frames <= MAX_FRAMES:
+            raise ValueError(f"frames per degree = {frames_per_degree:g} over the {hi - lo:.4g}° window gives "
+                             f"{frames} frames: must give 2 … {MAX_FRAMES}")
     frames = 240 if frames is None else int(frames)
     if not 2 <= frames <= MAX_FRAMES:
         raise ValueError(f"frames = {frames}: must be in 2 … {MAX_FRAMES}")

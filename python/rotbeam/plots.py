@@ -1055,6 +1055,10 @@ def run_main(main_function):
         print(f"rotbeam: error: standard output: the results could not be written ({e.strerror})", file=sys.stderr)
         code = 1
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # nothing left to flush at exit
+    except Exception as e:  # anything else: one line and exit 1, never a traceback
+        text = " ".join(f"{type(e).__name__}: {e}".split())[:300]
+        print(f"rotbeam: error: the plotting module failed unexpectedly ({text})", file=sys.stderr)
+        code = 1
     from rotbeam._interrupt import announce_result
 
     announce_result(code)

@@ -148,8 +148,13 @@ def test_mp4_has_every_frame(runs, tmp_path):
 
 
 @pytest.mark.parametrize("args, message", [
-    (["--window", "5:1"], "window 5:1: the end angle must exceed the start"),
-    (["--window", "100:120"], "no history rows between 100° and 120°"),
+    (["--window", "5:1"], "--window: FROM must be below TO, got 5:1"),
+    (["--window", "100:120"], "window 100:120: no history rows in it (the run recorded"),
+    # checked before Python: a traceback from matplotlib, and argparse's usage block with exit 1
+    (["--window=-1e308:1e308"], "--window: must be FROM:TO, two hub angles in degrees"),
+    (["--window", "5"], "--window: must be FROM:TO, two hub angles in degrees"),
+    # the option given is named, not a --frames never given
+    (["--frames-per-degree", "1000"], "frames per degree = 1000 over the"),
     (["-o", "x.png"], "x.png: must end in .gif, .mp4"),
     (["--magnify", "0"], "--magnify"),
     (["--frames", "3", "--frames-per-degree", "2"], "excludes"),
