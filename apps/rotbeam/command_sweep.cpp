@@ -62,21 +62,23 @@ int run_sweep_command(const SweepCommandOptions& o) {
   options.stop = &interrupt_token();
   const SweepReport r = run_sweep(axes, options);
   line.reset();  // the progress line is cleared before the results are printed
-  std::cout << r.cases.size() << " cases: " << r.ran << " run, " << r.resumed << " already done; " << r.failed
-            << " stopped on a diagnosed failure, " << r.errors << " errors, " << r.interrupted << " interrupted\n";
+  const auto counted = [](std::size_t n, const std::string& word) {
+    return std::to_string(n) + " " + word + (n == 1 ? "" : "s");
+  };
+  std::cout << counted(r.cases.size(), "case") << ": " << r.ran << " run, " << r.resumed << " already done; " << r.failed
+            << " stopped on a diagnosed failure, " << counted(r.errors, "error") << ", " << r.interrupted << " interrupted\n";
   for (std::size_t i = 0; i < r.cases.size(); ++i)
     if (r.results[i].status == SweepStatus::failed || r.results[i].status == SweepStatus::error)
       std::cout << "  " << r.cases[i].folder << " " << sweep_status_name(r.results[i].status) << ": "
                 << r.results[i].message << "\n";
   std::cout << "wrote " << (options.dir / "sweep.csv").string() << " and a folder per case\n";
   if (r.interrupted > 0) {
-    print_error("sweep interrupted: " + std::to_string(r.interrupted) +
-                " cases not finished; run the same command again to resume");
+    print_error("sweep interrupted: " + counted(r.interrupted, "case") + " not finished; run the same command again to resume");
     return kInterrupted;
   }
   if (r.errors > 0) {
-    print_error(std::to_string(r.errors) + " of " + std::to_string(r.cases.size()) +
-                " cases could not be run or written (status `error` in sweep.csv); run the same command again to retry them");
+    print_error(std::to_string(r.errors) + " of " + counted(r.cases.size(), "case") +
+                " could not be run or written (status `error` in sweep.csv); run the same command again to retry them");
     return kRuntimeFailure;
   }
   return kSuccess;

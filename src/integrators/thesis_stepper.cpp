@@ -265,7 +265,7 @@ private:
     if (!converged || !xn_.allFinite() || !un_.allFinite())
       return failed(FailureKind::corrector, s.t,
                     "the corrector did not converge in " + std::to_string(opt_.corrector_max_iterations) +
-                        " iterations (last λ = " + short_number(lambda_n) + " N, step " + short_number(h) + " s)");
+                        (opt_.corrector_max_iterations == 1 ? " iteration" : " iterations") + " (last λ = " + short_number(lambda_n) + " N, step " + short_number(h) + " s)");
     ++stats_.steps;
     StepOutcome out;
     if (lambda_n <= 0.0) {

@@ -186,7 +186,7 @@ NewtonOutcome newton(const SectionMap& map, Eigen::VectorXd z, int m, const Pass
       return out;
     }
     if (it == settings.max_newton_iterations) {
-      out.why = "Newton did not converge in " + std::to_string(it) + " iterations";
+      out.why = "Newton did not converge in " + std::to_string(it) + (it == 1 ? " iteration" : " iterations");
       return out;
     }
     if (revolutions_before + map.revolutions_run() > options.revolutions) {
@@ -345,7 +345,8 @@ PassResult shooting(const System& system, const InitialConditions& initial, cons
   std::ostringstream note;
   if (st.reached) {
     note << "reached by shooting after " << total << " revolutions (warm-up " << warm_revolutions << ", "
-         << st.newton_iterations << " Newton iterations, " << st.map_evaluations << " map evaluations), "
+         << st.newton_iterations << (st.newton_iterations == 1 ? " Newton iteration, " : " Newton iterations, ")
+         << st.map_evaluations << " map evaluations), "
          << period_words(m) << " (section distance over the period " << st.final_distance << " < "
          << options.steady_tolerance << ")";
     if (options.multipliers)
