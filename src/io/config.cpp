@@ -158,6 +158,8 @@ struct Parsed {
   const toml::node* method_node = nullptr;
   const toml::node* end_when_clear_node = nullptr;
   const toml::node* until_steady_node = nullptr;
+  const toml::node* steady_tolerance_node = nullptr;
+  const toml::node* multipliers_node = nullptr;
   const toml::node* filaments_node = nullptr;
   const toml::node* rows_node = nullptr;
 };
@@ -260,8 +262,16 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
          p.config.simulation.until_steady = boolean(k, n);
          p.until_steady_node = &n;
        }},
-      {"simulation.steady_tolerance", [](Parsed& p, auto& k, auto& n) { p.config.simulation.steady_tolerance = number_in(k, n, 0.0, 1.0, true, true); }},
-      {"simulation.multipliers", [](Parsed& p, auto& k, auto& n) { p.config.simulation.multipliers = boolean(k, n); }},
+      {"simulation.steady_tolerance",
+       [](Parsed& p, auto& k, auto& n) {
+         p.config.simulation.steady_tolerance = number_in(k, n, 0.0, 1.0, true, true);
+         p.steady_tolerance_node = &n;
+       }},
+      {"simulation.multipliers",
+       [](Parsed& p, auto& k, auto& n) {
+         p.config.simulation.multipliers = boolean(k, n);
+         p.multipliers_node = &n;
+       }},
       {"simulation.steady_method",
        [](Parsed& p, auto& k, auto& n) {
          p.config.simulation.steady_method =
@@ -538,6 +548,16 @@ Config validate(toml::table& root) {
     fail("simulation.end_when_clear", *p.end_when_clear_node,
          "ends one pass early; with simulation.revolutions = " + std::to_string(sim.revolutions) +
              " every revolution's free flight is the point");
+  // A run to the steady state ends there or after simulation.revolutions: an end angle was ignored
+  // without a word, and end_when_clear ended the section map's one-revolution runs early, so that
+  // the Floquet multipliers were silently not computed.
+  if (sim.until_steady && p.end_angle_node)
+    fail("simulation.end_angle_deg", *p.end_angle_node,
+         "cannot be given with simulation.until_steady = true (the run ends at the steady state or after "
+         "simulation.revolutions, not at an angle)");
+  if (sim.until_steady && sim.end_when_clear)
+    fail("simulation.end_when_clear", *p.end_when_clear_node,
+         "ends one pass early; with simulation.until_steady = true every revolution's free flight is the point");
   if (sim.steady_method == SteadyMethod::shooting && !sim.until_steady)
     fail("simulation.steady_method", *p.method_node,
          "shooting searches for the steady state: it needs simulation.until_steady = true");
@@ -553,6 +573,16 @@ Config validate(toml::table& root) {
            "brush.filaments × brush.rows = " + std::to_string(total) + " filaments, more than " +
                std::to_string(kMaxBrushFilaments));
   }
+  // The steady-state search's own keys, given a value other than their default, would change
+  // nothing without it (as shooting, above): refused. Their defaults, as in a file that lists every
+  // key, are accepted.
+  const PassOptions defaults;
+  if (!sim.until_steady && p.multipliers_node && sim.multipliers != defaults.multipliers)
+    fail("simulation.multipliers", *p.multipliers_node,
+         "the Floquet multipliers are those of the steady orbit: it needs simulation.until_steady = true");
+  if (!sim.until_steady && p.steady_tolerance_node && sim.steady_tolerance != defaults.steady_tolerance)
+    fail("simulation.steady_tolerance", *p.steady_tolerance_node,
+         "the steady state's tolerance: it needs simulation.until_steady = true");
   if (sim.until_steady && !p.revolutions_node) sim.revolutions = kDefaultSteadyRevolutionCap;
   // The start the configuration describes must be possible (checked through the beam and surface).
   ForeshorteningBeam beam;
