@@ -1,6 +1,7 @@
 #include "rotbeam/convergence.hpp"
 
 #include "rotbeam/case.hpp"
+#include "rotbeam/config.hpp"
 #include "rotbeam/job_runner.hpp"
 
 #include <algorithm>
@@ -92,6 +93,13 @@ ConvergenceStudy run_convergence(const Config& base, const ConvergenceLadder& la
     c.simulation.scheme = Scheme::adaptive;
     c.simulation.rtol = modes_rtol;
     c.beam.modes = n;
+    // Per-mode damping has one value per mode of beam.modes: refused here, before any run, not
+    // inside the ladder's run after the others finished (the whole study was lost).
+    const std::size_t ratios = c.beam.damping_ratio.size();
+    if (ratios > 1 && static_cast<int>(ratios) != n)
+      throw ConfigError("--modes " + std::to_string(n) + ": beam.damping_ratio has " + std::to_string(ratios) +
+                        " values, one per mode of beam.modes = " + std::to_string(base.beam.modes) +
+                        "; give it one number to compare mode counts");
     c.initial.modal_velocity.resize(n, 0.0);
     c.initial.modal_displacement.resize(n, 0.0);
     ConvergenceRun r;
@@ -105,6 +113,14 @@ ConvergenceStudy run_convergence(const Config& base, const ConvergenceLadder& la
     c.simulation.output_interval_s = 1e30;
     c.simulation.near_surface_gap_m = 0.0;
   }
+
+  // Every run of the ladder is built before any runs: a configuration that cannot be is refused
+  // at once, naming its run.
+  for (std::size_t i = 0; i < configs.size(); ++i) try {
+      build_case(configs[i]);
+    } catch (const ConfigError& e) {
+      throw ConfigError(study.runs[i].label + ": " + e.what());
+    }
 
   JobRunnerOptions runner;
   runner.threads = jobs;
