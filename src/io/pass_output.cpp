@@ -275,6 +275,28 @@ bool is_temporary_suffix(const std::string& rest) {
 }
 }  // namespace
 
+namespace {
+// True when `dir` holds files a run of rotbeam wrote: a summary.json with the run's `config` and
+// `files`, or a history.csv or events.csv that begins with the run's header (a killed run's).
+bool holds_run_files(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::is_regular_file(fs::symlink_status(dir / "summary.json", ec))) {
+    std::ifstream in(dir / "summary.json");
+    const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+    if (j.is_object() && j.contains("config") && j.contains("files")) return true;
+  }
+  for (const auto& [name, header] : {std::pair<const char*, std::string>{"history.csv", "t_s,theta_deg,phase,"},
+                                     std::pair<const char*, std::string>{"events.csv", events_header()}})
+    if (fs::is_regular_file(fs::symlink_status(dir / name, ec))) {
+      std::ifstream in(dir / name);
+      std::string first(header.size(), '\0');
+      if (in.read(first.data(), static_cast<std::streamsize>(first.size())) && first == header) return true;
+    }
+  return false;
+}
+}  // namespace
+
 PassFiles::PassFiles(const std::filesystem::path& dir, int n, int history_revolutions)
     : dir_(dir), n_(n), history_revolutions_(history_revolutions) {
   namespace fs = std::filesystem;
@@ -302,10 +324,9 @@ PassFiles::PassFiles(const std::filesystem::path& dir, int n, int history_revolu
     // An older run's files (summary.json, or the history and events a killed run left) describe that
     // run: its pictures and animation (`rotbeam plot`, `rotbeam animate`), revolutions and force bins
     // are removed with it, so that nothing sits beside other data. In a folder without them, files
-    // of these names are the user's and stay.
-    bool older_run = false;
-    for (const char* name : {"summary.json", "history.csv", "events.csv"})
-      older_run = older_run || fs::is_regular_file(fs::symlink_status(dir / name, ec));
+    // of these names are the user's and stay; so do they beside a user's summary.json that is not a
+    // run's (`{"mine": 1}` deleted the user's energy.png).
+    const bool older_run = holds_run_files(dir);
     if (older_run)
       for (const char* drawn : {"normal_force_vs_y.png", "tip_path.png", "modal_coordinates.png", "energy.png",
                                 "impacts.png", "animation.gif", "animation.mp4"})
