@@ -28,6 +28,7 @@ Command add_plot_command(CLI::App& app) {
       throw ConfigError(path_text(opts->folder) + ": " + (ec ? ec.message() : std::string("no such folder")));
     if (!fs::exists(dir / "summary.json") && !fs::exists(dir / "sweep.csv"))
       throw ConfigError(opts->folder + ": neither a run folder (summary.json) nor a sweep folder (sweep.csv)");
+    const FolderLock lock = drawing_lock(dir);  // no run replaces the files while they are drawn
     std::vector<std::string> args = {opts->folder};
     if (!opts->output.empty()) args.insert(args.end(), {"-o", opts->output});
     if (opts->cases) args.push_back("--cases");

@@ -246,4 +246,12 @@ void check_output_file(const std::string& option, const std::string& path, const
   throw ConfigError(option + " " + path + ": must end in " + list);
 }
 
+FolderLock drawing_lock(const std::string& dir) {
+  try {
+    return FolderLock(dir, FolderLock::Use::drawing);
+  } catch (const std::runtime_error& e) {
+    throw ConfigError(e.what());
+  }
+}
+
 }  // namespace rotbeam::cli

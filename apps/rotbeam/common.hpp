@@ -2,6 +2,7 @@
 #pragma once
 
 #include "rotbeam/config.hpp"
+#include "rotbeam/folder_lock.hpp"
 #include "rotbeam/pass.hpp"
 #include "rotbeam/outcome.hpp"
 #include "rotbeam/stop_token.hpp"
@@ -128,5 +129,10 @@ std::string percent_text(double fraction);
 /// exists, and (when `suffixes` is not empty) ending in one of them. Throws ConfigError naming the
 /// option and the path.
 void check_output_file(const std::string& option, const std::string& path, const std::vector<std::string>& suffixes);
+
+/// The lock `plot` and `animate` hold on the folder they draw (FolderLock::Use::drawing): a run into
+/// it meanwhile is refused instead of leaving the pictures of the older run beside its files.
+/// Throws ConfigError naming the folder when a run is writing there.
+FolderLock drawing_lock(const std::string& dir);
 
 }  // namespace rotbeam::cli
