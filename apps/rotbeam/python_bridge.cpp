@@ -8,6 +8,7 @@
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -91,8 +92,14 @@ int run_python_module(const std::string& module, const std::vector<std::string>&
   ::fcntl(report[0], F_SETFL, O_NONBLOCK);
   ForwardInterrupts forward;
   g_forwarded = 0;
+  const pid_t parent = ::getpid();
   const pid_t pid = fork();
   if (pid == 0) {
+    // The module dies with this process: a rotbeam killed by SIGKILL left it running, and its
+    // pictures appeared seconds after the command the user killed had exited. SIGTERM lets it
+    // remove its temporaries; a parent already gone before the request took effect is checked.
+    ::prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (::getppid() != parent) _exit(kInterrupted);
     ::close(report[0]);
     ::fcntl(report[1], F_SETFD, 0);  // kept across exec
     setenv("ROTBEAM_RESULT_FD", std::to_string(report[1]).c_str(), 1);
