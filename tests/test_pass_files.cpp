@@ -209,6 +209,13 @@ TEST(PassFiles, TheHistoryEstimateMatchesWhatARunWrites) {
   }
   EXPECT_FALSE(estimate_history(build_case(load_config(std::nullopt, {}))).upper_bound);
   EXPECT_TRUE(estimate_history(build_case(load_config(std::nullopt, {"simulation.end_when_clear=true"}))).upper_bound);
+  // The key named for the sampling is the one that gives most rows (the near-surface one here: the
+  // note named output.interval_s, left at its default).
+  EXPECT_EQ(estimate_history(build_case(load_config(std::nullopt, {}))).sampling_key, "output.interval_s");
+  EXPECT_EQ(estimate_history(build_case(load_config(std::nullopt, {"output.near_surface_gap_m=0.9", "output.near_surface_interval_s=2e-9",
+                                                                   "hub.speed_rpm=400"})))
+                .sampling_key,
+            "output.near_surface_interval_s");
   // Unknown with every step sampled; refused (naming the key) where it cannot fit.
   EXPECT_FALSE(estimate_history(build_case(load_config(std::nullopt, {"output.interval_s=0"}))).known);
   EXPECT_FALSE(estimate_history(build_case(load_config(std::nullopt, {"output.near_surface_interval_s=0"}))).known);

@@ -28,6 +28,18 @@ void print_summary(const Config& config, const PassResult& r, const std::string&
             << percent_text(config.surface.depth_fraction) << " %, μ = " << config.contact.friction.mu << ", "
             << config.beam.modes << " modes, " << config.initial.start << " start, " << scheme_name(s.scheme)
             << " scheme\n";
+  // A pass that stopped says so first: `run > summary.txt` kept a complete-looking summary of a
+  // partial pass, the failure being on stderr only.
+  if (r.failure) {
+    const std::string where = "at t = " + number_text(r.failure->t) + " s, θ = " +
+                              fixed(r.failure->theta * 180.0 / M_PI, 4) + " deg";
+    if (r.failure->kind == FailureKind::interrupted)
+      std::cout << "  INTERRUPTED           " << where << " (exit " << exit_code_for_failure(r.failure->kind)
+                << "): what follows covers the pass up to there\n";
+    else
+      std::cout << "  STOPPED               " << where << ": numerical failure (" << failure_name(r.failure->kind)
+                << ", exit " << exit_code_for_failure(r.failure->kind) << "): what follows covers the pass up to there\n";
+  }
   std::cout << "  impacts               " << s.impacts << " (" << s.plastic_impacts << " plastic)\n";
   std::cout << "  contact episodes      " << s.contact_episodes << ", " << fixed(s.contact_time_s * 1e3, 4)
             << " ms in contact\n";
@@ -91,7 +103,7 @@ int run_pass_command(const RunOptions& o) {
   const HistoryEstimate estimate = check_history_fits(c, available_disk_bytes(o.output_dir), false);
   if (estimate.known && estimate.csv_bytes > 1e9 && !o.quiet)
     std::cerr << "rotbeam: note: history.csv will take " << (estimate.upper_bound ? "up to " : "about ")
-              << size_text(estimate.csv_bytes) << " (output.interval_s sets its sampling)" << std::endl;
+              << size_text(estimate.csv_bytes) << " (" << estimate.sampling_key << " sets its sampling)" << std::endl;
   // The step keys' ranges cannot bound a pass's cost (config.cpp): a long one is said before it starts.
   const StepEstimate steps = estimate_steps(c);
   if (steps.steps > kLongPassSteps && !o.quiet) {

@@ -41,6 +41,9 @@ struct HistoryEstimate {
   // At least this many: a row is taken at the first step an interval after the last, and no step
   // is longer than the scheme's largest, so rows ≥ span / (interval + largest step).
   double min_rows = 0, min_csv_bytes = 0, min_memory_bytes = 0;
+  // The key whose interval gives most of the rows: output.interval_s, or
+  // output.near_surface_interval_s when the rows near the surface are the most.
+  std::string sampling_key = "output.interval_s";
 };
 HistoryEstimate estimate_history(const Case& c);
 

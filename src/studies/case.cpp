@@ -82,6 +82,7 @@ HistoryEstimate estimate_history(const Case& c) {
   const double n = beam.modes();
   e.known = true;
   e.rows = span_s / o.output_interval_s + 1.0 + rigid_rows + near_rows;
+  if (near_rows > 0.5 * e.rows) e.sampling_key = "output.near_surface_interval_s";
   // Bytes per row with the shortest round-trip decimals (std::to_chars): a number takes about 20.4
   // characters with its comma (fitted on the base case), an exact zero 2, the phase 5. A row of the
   // flexible motion has 9 + 2n numbers and, in free flight, F_n, F_t and λ at zero; a rigid-turn row
