@@ -8,6 +8,7 @@
 #include "rotbeam/stop_token.hpp"
 
 #include <array>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -299,6 +300,47 @@ TEST(Reliability, ASweepCaseThatCannotBeWrittenFailsTheSweep) {
   fs::remove_all(out);
 }
 
+TEST(Reliability, TheSummaryOfAStoppedPassSaysSoAtItsTop) {
+  // `run > summary.txt` of a pass stopped by the impacts cap kept a complete-looking summary: the
+  // failure was on stderr only. The second line of the summary (after the case) now says where it
+  // stopped and why.
+  const std::string out = fresh_dir("stopped_summary");
+  const std::string text = out + ".stdout";
+  const std::string cmd = std::string(ROTBEAM_CLI) + " run --set simulation.max_impacts=3 -o " + out + " > " + text + " 2>/dev/null";
+  const int st = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(st));
+  EXPECT_EQ(WEXITSTATUS(st), 10);
+  std::ifstream in(text);
+  std::string header, second;
+  std::getline(in, header);
+  std::getline(in, second);
+  EXPECT_NE(second.find("STOPPED"), std::string::npos) << second;
+  EXPECT_NE(second.find("θ = "), std::string::npos) << second;
+  EXPECT_NE(second.find("numerical failure (impacts, exit 10)"), std::string::npos) << second;
+  fs::remove(text);
+  fs::remove_all(out);
+}
+
+TEST(Reliability, ACaseFolderThatIsALinkIsRunIntoAFolderOfItsOwn) {
+  // case-0002 replaced by a link to case-0001: the resume wrote case 2 through the link into case
+  // 1's folder, whose summary then said friction 0.2 while sweep.csv said 0.1. The link is now
+  // removed and case 2 run into a real folder; case 1's files stay its own.
+  const std::string out = fresh_dir("sweep_link");
+  const std::string args = "sweep --set hub.speed_rpm=3000 --set simulation.end_angle_deg=0 --vary surface.friction=0.1,0.2 -o OUT";
+  ASSERT_EQ(run(args, out).status, 0);
+  fs::remove_all(out + "/case-0002");
+  fs::create_directory_symlink("case-0001", out + "/case-0002");
+  const Outcome o = run(args, out);
+  EXPECT_EQ(o.status, 0) << o.err;
+  EXPECT_FALSE(fs::is_symlink(out + "/case-0002"));
+  for (const auto& [folder, mu] : {std::pair<std::string, double>{"case-0001", 0.1}, {"case-0002", 0.2}}) {
+    std::ifstream in(out + "/" + folder + "/summary.json");
+    ASSERT_TRUE(in) << folder;
+    EXPECT_EQ(nlohmann::json::parse(in)["config"]["surface"]["friction"].get<double>(), mu) << folder;
+  }
+  fs::remove_all(out);
+}
+
 TEST(Reliability, ResumeChecksEveryFileOfACase) {
   // A finished case whose history.csv was truncated, or whose events.csv was deleted, is run again
   // (summary.json records the files' sizes), not marked `resumed`.
@@ -362,6 +404,84 @@ TEST(Reliability, AnInterruptedPlotLeavesNoScratchNorProcess) {
   fs::remove_all(tmp);
   fs::remove(err);
   fs::remove(png);
+}
+
+namespace {
+// A stand-in for the plotting interpreter (ROTBEAM_PYTHON) that writes its process id to `pid_file`
+// and sleeps `seconds`: it lets a test act while `plot` or `modes --plot` waits for its module.
+std::string sleeping_python(const std::string& dir, const std::string& pid_file, int seconds) {
+  const std::string script = dir + "/python";
+  std::ofstream(script) << "#!/bin/sh\necho $$ > " << pid_file << "\nexec sleep " << seconds << "\n";
+  fs::permissions(script, fs::perms::owner_all);
+  return script;
+}
+
+// Waits up to 10 s for a file to be written; returns its first word.
+std::string wait_for_word(const std::string& file) {
+  for (int i = 0; i < 2000; ++i) {
+    std::ifstream in(file);
+    std::string word;
+    if (in >> word) return word;
+    usleep(5000);
+  }
+  return "";
+}
+
+// True while the process runs (a zombie, ended but not yet reaped, does not count).
+bool process_runs(const std::string& pid) {
+  std::ifstream stat("/proc/" + pid + "/stat");
+  std::string line;
+  if (!std::getline(stat, line)) return false;
+  const std::size_t paren = line.rfind(')');
+  return paren != std::string::npos && paren + 2 < line.size() && line[paren + 2] != 'Z';
+}
+}  // namespace
+
+TEST(Reliability, AKilledRotbeamTakesItsPlottingProcessAlong) {
+  // kill -9 of `rotbeam plot`/`animate`/`modes --plot` left the Python process running as an
+  // orphan: its pictures appeared seconds after the killed command exited 137. The module now dies
+  // with rotbeam (SIGTERM). The stand-in sleeps 30 s; it must be gone 2 s after the kill.
+  const std::string dir = fresh_dir("killed_plot");
+  fs::create_directories(dir);
+  const std::string pid_file = dir + "/pid";
+  const std::string python = sleeping_python(dir, pid_file, 30);
+  const std::string cmd = "sh -c 'TMPDIR=" + dir + " ROTBEAM_PYTHON=" + python + " " + std::string(ROTBEAM_CLI) +
+                          " modes --plot " + dir + "/c.png >/dev/null 2>&1 & pid=$!; i=0; while [ ! -s " + pid_file +
+                          " ] && [ $i -lt 2000 ]; do sleep 0.005; i=$((i+1)); done; kill -KILL $pid; wait $pid; exit $?'";
+  const int st = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(st));
+  EXPECT_EQ(WEXITSTATUS(st), 128 + SIGKILL);
+  const std::string child = wait_for_word(pid_file);
+  ASSERT_FALSE(child.empty());
+  for (int i = 0; i < 400 && process_runs(child); ++i) usleep(5000);
+  EXPECT_FALSE(process_runs(child)) << "the plotting process " << child << " outlived the killed rotbeam";
+  if (process_runs(child)) ::kill(std::stoi(child), SIGKILL);
+  fs::remove_all(dir);
+}
+
+TEST(Reliability, ARunIsRefusedInAFolderBeingDrawn) {
+  // `plot DIR` read and drew the files while `run -o DIR` replaced them: the folder ended with the
+  // new run beside pictures of the older one. plot and animate hold the folder's lock while they
+  // draw, so the run is refused (exit 2). The stand-in interpreter keeps the plot drawing for 3 s.
+  const std::string dir = fresh_dir("drawn");
+  const std::string out = dir + "/run";
+  fs::create_directories(dir);
+  const std::string args = "run --set hub.speed_rpm=3000 --set simulation.end_angle_deg=0 -o OUT";
+  ASSERT_EQ(run(args, out).status, 0);
+  const std::string pid_file = dir + "/pid";
+  const std::string python = sleeping_python(dir, pid_file, 3);
+  const std::string plot = "ROTBEAM_PYTHON=" + python + " " + std::string(ROTBEAM_CLI) + " plot " + out + " >/dev/null 2>&1";
+  std::FILE* drawing = ::popen(plot.c_str(), "r");
+  ASSERT_NE(drawing, nullptr);
+  ASSERT_FALSE(wait_for_word(pid_file).empty());
+  const Outcome o = run(args, out);
+  EXPECT_EQ(o.status, 2) << o.err;
+  EXPECT_NE(o.err.find("another rotbeam run is writing into this folder"), std::string::npos) << o.err;
+  const Outcome second = run("plot OUT", out);
+  EXPECT_EQ(second.status, 2) << second.err;
+  EXPECT_NE(second.err.find("draw it once that has finished"), std::string::npos) << second.err;
+  ::pclose(drawing);
+  fs::remove_all(dir);
 }
 
 namespace {
@@ -469,6 +589,13 @@ TEST(Reliability, AFolderThatHeldNoRunKeepsTheUsersPictures) {
   const std::string args = "run --set hub.speed_rpm=3000 --set simulation.end_angle_deg=0 -o OUT";
   ASSERT_EQ(run(args, out).status, 0);
   for (const char* name : {"energy.png", "animation.gif", "revolutions.csv"}) EXPECT_TRUE(fs::exists(out + "/" + name)) << name;
+  // A summary.json that is not a run's (no config, no files) is no older run either.
+  fs::remove_all(out);
+  fs::create_directories(out);
+  std::ofstream(out + "/summary.json") << "{\"mine\": 1}\n";
+  std::ofstream(out + "/energy.png") << "mine\n";
+  ASSERT_EQ(run(args, out).status, 0);
+  EXPECT_TRUE(fs::exists(out + "/energy.png"));
   std::ofstream(out + "/energy.png") << "drawn of the run\n";
   ASSERT_EQ(run(args, out).status, 0);
   EXPECT_FALSE(fs::exists(out + "/energy.png"));
