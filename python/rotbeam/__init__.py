@@ -125,9 +125,10 @@ def _arguments(config, overrides):
     return path, sets
 
 
-def _table_arrays(text):
-    """revolutions.csv's or force_bins.csv's text as {column: numpy array} (empty arrays for a
-    table without rows)."""
+def _table_arrays(text, ints=("revolution", "impacts", "contact_episodes"), bools=("complete",), words=()):
+    """A CSV table's text (revolutions.csv, force_bins.csv, the brush's tables) as {column: numpy
+    array}: the columns named in `ints` as integers, in `bools` as booleans (true/false), in `words`
+    as strings, the others as floats ("nan" included); empty arrays for a table without rows."""
     import numpy as np
     lines = text.decode().splitlines()
     names = lines[0].split(",")
@@ -135,10 +136,12 @@ def _table_arrays(text):
     out = {}
     for k, name in enumerate(names):
         values = [r[k] for r in rows]
-        if name in ("revolution", "impacts", "contact_episodes"):  # whole numbers in both tables
+        if name in ints:
             out[name] = np.array([int(v) for v in values], dtype=np.int64)
-        elif name == "complete":
+        elif name in bools:
             out[name] = np.array([v == "true" for v in values], dtype=bool)
+        elif name in words:
+            out[name] = np.array(values, dtype=str)
         else:
             out[name] = np.array([float(v) for v in values], dtype=float)
     return out
@@ -181,31 +184,6 @@ def run(config=None, overrides=None):
     return Result(summary, history, events, _table_arrays(revolutions), _table_arrays(force_bins))
 
 
-def _csv_columns(text):
-    """A CSV table's text as {column: numpy array}: integers, booleans (true/false) and strings where
-    every value is one, floats otherwise ("nan" included)."""
-    import numpy as np
-    lines = text.decode().splitlines()
-    names = lines[0].split(",")
-    rows = [line.split(",") for line in lines[1:]]
-    out = {}
-    for k, name in enumerate(names):
-        values = [r[k] for r in rows]
-        if values and all(v in ("true", "false") for v in values):
-            out[name] = np.array([v == "true" for v in values], dtype=bool)
-            continue
-        try:
-            out[name] = np.array([int(v) for v in values], dtype=np.int64)
-            continue
-        except ValueError:
-            pass
-        try:
-            out[name] = np.array([float(v) for v in values], dtype=float)
-        except ValueError:
-            out[name] = np.array(values, dtype=str)
-    return out
-
-
 class BrushResult:
     """A brush at its steady state (`rotbeam brush`, docs/brush.md): `summary` (the keys of its
     summary.json), `workpiece` (numpy arrays by the columns of workpiece.csv: the force, torque and
@@ -243,7 +221,10 @@ def brush(config=None, overrides=None, jobs=0):
         raise TypeError(f"jobs must be a whole number of threads (0: all cores), not {jobs!r}")
     path, sets = _arguments(config, overrides)
     summary, workpiece, profile, filaments = _core.brush(path, sets, jobs)
-    return BrushResult(summary, _csv_columns(workpiece), _csv_columns(profile), _csv_columns(filaments))
+    bins = {"ints": ("impacts",), "bools": ()}
+    return BrushResult(summary, _table_arrays(workpiece, **bins), _table_arrays(profile, **bins),
+                       _table_arrays(filaments, ints=("filament", "row", "position", "distinct", "period_revolutions",
+                                                      "revolutions_run"), bools=("reaches",), words=("status",)))
 
 
 def impact(config=None, overrides=None):

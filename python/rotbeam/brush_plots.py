@@ -188,39 +188,13 @@ def brush_figures(folder):
     return figures
 
 
-def brush_map_figure(table, keys, ok, title, styles_of, value_text, legend_beside):
-    """brush_map.png for a sweep over brushes: six of sweep.csv's brush columns against the first
-    varied key, a line per value of the others (styles_of, value_text and legend_beside are the
-    sweep pictures' helpers, so both kinds of sweep look alike)."""
-    first, rest = keys[0], keys[1:]
-    x = table[first]
-    groups = list(dict.fromkeys(tuple(table[k][i] for k in rest) for i in range(len(x)) if ok[i]))
-    try:
-        groups.sort()
-    except TypeError:
-        pass
-    styles = styles_of(groups) if rest else [{"color": "C0", "linestyle": "-", "marker": "o"}] * len(groups)
-    fig, axes = plt.subplots(2, 3, figsize=(14, 7.5))
-    for ax, (metric, scale, label) in zip(axes.flat, [
-            ("mean_normal_force_n", 1, "mean normal force (N)"),
-            ("mean_tangential_force_n", 1, "mean tangential force (N)"),
-            ("mean_hub_power_w", 1, "mean hub power (W)"),
-            ("peak_normal_force_n", 1, "peak binned normal force (N)"),
-            ("contact_zone_width_m", 1e3, "contact zone along the surface (mm)"),
-            ("force_ratio", 1, "mean normal force per filament\n/ (3EI·pL/L³)")]):
-        for g, style in zip(groups, styles):
-            sel = ok.copy()
-            for k, v in zip(rest, g):
-                sel &= table[k] == v
-            order = np.argsort(x[sel].astype(float)) if x.dtype.kind == "f" else np.arange(sel.sum())
-            label_g = ", ".join(f"{k} = {value_text(v)}" for k, v in zip(rest, g)) or None
-            ax.plot(x[sel][order], table[metric][sel][order] * scale, ms=4, label=label_g, **style)
-        ax.set_xlabel(first)
-        ax.set_ylabel(label)
-        ax.grid(alpha=0.3)
-        if not ok.any():
-            ax.text(0.5, 0.5, "no case has results", transform=ax.transAxes, ha="center", va="center")
-    fig.suptitle(title, fontsize=10)
-    right = legend_beside(fig, *axes[0, 0].get_legend_handles_labels(), fontsize=8) if rest and ok.any() else 1.0
-    fig.tight_layout(rect=(0, 0, right, 1))
-    return fig
+# brush_map.png of a sweep over brushes (rotbeam.plots.metrics_figure draws it as the sweep's
+# metrics): six of sweep.csv's brush columns, (column, scale, axis label).
+BRUSH_MAP_PANELS = [
+    ("mean_normal_force_n", 1, "mean normal force (N)"),
+    ("mean_tangential_force_n", 1, "mean tangential force (N)"),
+    ("mean_hub_power_w", 1, "mean hub power (W)"),
+    ("peak_normal_force_n", 1, "peak binned normal force (N)"),
+    ("contact_zone_width_m", 1e3, "contact zone along the surface (mm)"),
+    ("force_ratio", 1, "mean normal force per filament\n/ (3EI·pL/L³)"),
+]

@@ -49,7 +49,7 @@ except ImportError as missing:
 
 DEG = "°"
 
-from .brush_plots import DamagedBrush, brush_figures, brush_map_figure, read_brush  # noqa: E402
+from .brush_plots import BRUSH_MAP_PANELS, DamagedBrush, brush_figures, read_brush  # noqa: E402
 
 
 def remove_stale_temporaries(path):
@@ -823,8 +823,9 @@ def read_sweep(folder):
     return table, keys, ok
 
 
-def sweep_metrics_figure(table, keys, ok):
-    """sweep_metrics.png: six metrics against the first varied key, a line per value of the others."""
+def metrics_figure(table, keys, ok, panels, title):
+    """Six of sweep.csv's columns against the first varied key, a line per value of the others.
+    panels: (column, scale, axis label) for each of the six."""
     first, rest = keys[0], keys[1:]
     x = table[first]
     groups = list(dict.fromkeys(tuple(table[k][i] for k in rest) for i in range(len(x)) if ok[i]))
@@ -834,13 +835,7 @@ def sweep_metrics_figure(table, keys, ok):
         pass
     styles = series_styles(groups) if rest else [{"color": "C0", "linestyle": "-", "marker": "o"}] * len(groups)
     fig, axes = plt.subplots(2, 3, figsize=(14, 7.5))
-    # Sweeps written before sweep.csv had the binned peak show the sustained-contact peak.
-    peak = (("binned_peak_normal_force_n", 1, "peak F_n over hub-angle bins (N)\nimpacts included")
-            if "binned_peak_normal_force_n" in table else ("peak_normal_force_n", 1, "peak F_n in sustained contact (N)"))
-    for ax, (metric, scale, label) in zip(axes.flat, [
-            ("impacts", 1, "impacts"), ("contact_episodes", 1, "contact episodes"),
-            ("last_separation_deg", 1, f"last separation ({DEG})"), peak,
-            ("normal_impulse_n_s", 1e3, "normal impulse (mN·s)"), ("max_tip_deflection_ratio", 1, "max |y_t|/L")]):
+    for ax, (metric, scale, label) in zip(axes.flat, panels):
         for g, style in zip(groups, styles):
             sel = ok.copy()
             for k, v in zip(rest, g):
@@ -853,10 +848,22 @@ def sweep_metrics_figure(table, keys, ok):
         ax.grid(alpha=0.3)
         if not ok.any():
             ax.text(0.5, 0.5, "no case has results", transform=ax.transAxes, ha="center", va="center")
-    fig.suptitle(f"Sweep of {len(table['case'])} cases over {', '.join(keys)}{_cases_note(table, ok)}", fontsize=10)
+    fig.suptitle(title, fontsize=10)
     right = _legend_beside(fig, *axes[0, 0].get_legend_handles_labels(), fontsize=8) if rest and ok.any() else 1.0
     fig.tight_layout(rect=(0, 0, right, 1))
     return fig
+
+
+def sweep_metrics_figure(table, keys, ok):
+    """sweep_metrics.png: six metrics against the first varied key, a line per value of the others."""
+    # Sweeps written before sweep.csv had the binned peak show the sustained-contact peak.
+    peak = (("binned_peak_normal_force_n", 1, "peak F_n over hub-angle bins (N)\nimpacts included")
+            if "binned_peak_normal_force_n" in table else ("peak_normal_force_n", 1, "peak F_n in sustained contact (N)"))
+    panels = [("impacts", 1, "impacts"), ("contact_episodes", 1, "contact episodes"),
+              ("last_separation_deg", 1, f"last separation ({DEG})"), peak,
+              ("normal_impulse_n_s", 1e3, "normal impulse (mN·s)"), ("max_tip_deflection_ratio", 1, "max |y_t|/L")]
+    return metrics_figure(table, keys, ok, panels,
+                          f"Sweep of {len(table['case'])} cases over {', '.join(keys)}{_cases_note(table, ok)}")
 
 
 def sweep_force_figure(folder, table, keys, ok, folders, runs=None):
@@ -918,7 +925,7 @@ def plot_brush_sweep(folder, out, table, keys, ok, cases):
         note = (f"\n{len(missing)} of {n} brushes not drawn (a filament failed, so the sums would leave it out; "
                 f"or no results): {named}{', …' if len(missing) > 4 else ''}")
     title = f"Brush map: {n} brushes over {', '.join(keys)}{note}"
-    figures = [("brush_map", brush_map_figure(table, keys, ok, title, series_styles, value_text, _legend_beside))]
+    figures = [("brush_map", metrics_figure(table, keys, ok, BRUSH_MAP_PANELS, title))]
     written = save_figures(figures, out)
     for f, figs in checked.items():
         written += save_figures(figs, out / f)
