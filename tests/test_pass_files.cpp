@@ -149,7 +149,9 @@ TEST(PassFiles, OneRunAtATimeInAFolderAndLeftoversOfAKilledRunAreRemoved) {
   // The pictures an older run's `plot` and `animate` drew here (beside its summary.json) describe
   // that run: removed. Other pictures (a Campbell diagram, a user's) stay; in a folder that held no
   // run, even those of the drawn names stay (Reliability.AFolderThatHeldNoRunKeepsTheUsersPictures).
-  std::ofstream(dir / "summary.json") << "{}\n";
+  // (A run's summary: its config and files; a user's {} would not count, Reliability.
+  // AFolderThatHeldNoRunKeepsTheUsersPictures.)
+  std::ofstream(dir / "summary.json") << "{\"config\": {}, \"files\": {}}\n";
   const std::vector<std::string> drawn = {"tip_path.png", "energy.png", "animation.gif", "animation.mp4"};
   for (const std::string& name : drawn) std::ofstream(dir / name) << "old run\n";
   std::ofstream(dir / "campbell.png") << "mine\n";
