@@ -246,6 +246,16 @@ TEST(Brush, ConfigurationRules) {
   EXPECT_NE(message({"brush.length_scatter=0.5"}).find("brush.length_scatter"), std::string::npos);
   EXPECT_NE(message({"brush.seed=-1"}).find("brush.seed"), std::string::npos);
   EXPECT_NE(message({"brush.filamnets=3"}).find("did you mean"), std::string::npos);
+  // A drawn filament that cannot be built (a diameter beyond its length) is bad input, named with
+  // the filament, before anything runs.
+  try {
+    run_brush(load_config_string("", {"brush.filaments=50", "beam.diameter_m=0.05", "brush.diameter_scatter=0.3",
+                                      "brush.seed=2"}));
+    ADD_FAILURE() << "accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("brush: filament ", 0), 0u) << e.what();
+    EXPECT_NE(std::string(e.what()).find("beam.diameter_m"), std::string::npos) << e.what();
+  }
   // The configuration round trip a filament goes through keeps every value.
   const Config d = load_config_string("", {"beam.damping_ratio=[0.1,0.2,0.3,0.4,0.5]", "hub.speed_rpm=777",
                                            "initial.modal_velocity=[0.1,0,0,0,0]", "simulation.revolutions=9",

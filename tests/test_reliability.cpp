@@ -580,6 +580,26 @@ TEST(Reliability, ASweepFolderDoesNotBecomeARun) {
   fs::remove_all(out);
 }
 
+TEST(Reliability, AReproductionIsNotMixedIntoAnotherKindOfFolder) {
+  // `reproduce -o RUNDIR` wrote report.md, manifest.json and its figures beside a run's files.
+  const std::string out = fresh_dir("reproduce_into_others");
+  for (const auto& [files, kind] : std::vector<std::pair<std::vector<std::string>, std::string>>{
+           {{"summary.json", "history.csv"}, "a run (summary.json, history.csv)"},
+           {{"sweep.csv"}, "a sweep (sweep.csv)"},
+           {{"workpiece.csv"}, "a brush (workpiece.csv)"}}) {
+    fs::remove_all(out);
+    fs::create_directories(out);
+    for (const std::string& f : files) std::ofstream(out + "/" + f) << "x\n";
+    const Outcome o = run("reproduce -o OUT", out);
+    EXPECT_EQ(o.status, 2) << o.err;
+    EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
+    EXPECT_NE(o.err.find(": holds " + kind + ", not a reproduction; give another folder"), std::string::npos) << o.err;
+    EXPECT_FALSE(fs::exists(out + "/manifest.json"));
+    EXPECT_FALSE(fs::exists(out + "/thesis"));
+  }
+  fs::remove_all(out);
+}
+
 TEST(Reliability, AFolderThatHeldNoRunKeepsTheUsersPictures) {
   // `run -o` deleted energy.png, animation.gif, force_bins.csv… of a folder that never held a run;
   // they are removed only with an older run (its summary.json), whose pictures they are.

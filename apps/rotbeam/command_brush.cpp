@@ -63,7 +63,8 @@ int run_brush_command(const BrushCommandOptions& o) {
   if (!config.brush)
     throw ConfigError("brush: the configuration has no [brush] section (give brush.filaments, e.g. --set brush.filaments=24)");
   if (o.output_dir.empty()) throw ConfigError("-o DIR: an output folder is required");
-  brush_filaments(config);  // the draw itself cannot fail, but a bad brush is refused before the folder is made
+  // Every drawn filament is validated before the folder is made: bad input leaves nothing behind.
+  brush_filament_configs(config, brush_filaments(config));
   std::unique_ptr<BrushFiles> files;
   try {
     files = std::make_unique<BrushFiles>(o.output_dir);
@@ -103,6 +104,10 @@ int run_brush_command(const BrushCommandOptions& o) {
                 ") at t = " + number_text(f.t) + " s, θ = " + fixed(f.theta * 180.0 / M_PI, 4) + " deg: " + f.message +
                 "; the sums in " + o.output_dir + " leave out " + std::to_string(r.summary.failed) + " filaments");
     return exit_code_for_failure(f.kind);
+  }
+  if (!r.summary.error.empty()) {
+    print_error(r.summary.error + "; the sums in " + o.output_dir + " leave it out");
+    return kRuntimeFailure;
   }
   return kSuccess;
 }

@@ -189,6 +189,16 @@ double folder_bytes(const fs::path& dir) {
 int run_reproduce(const ReproduceOptions& o) {
   if (o.jobs < 0) throw ConfigError("--jobs " + std::to_string(o.jobs) + ": must be >= 0");
   const fs::path dir(o.output_dir);
+  // A run's, a sweep's or a brush's folder is not made a reproduction's as well: `plot` would draw
+  // one of the two, and the reproduction's files would stand beside results they do not describe.
+  std::error_code kind_ec;
+  const char* other = fs::exists(dir / "sweep.csv", kind_ec)       ? "a sweep (sweep.csv)"
+                      : fs::exists(dir / "workpiece.csv", kind_ec) ? "a brush (workpiece.csv)"
+                      : fs::exists(dir / "summary.json", kind_ec) && fs::exists(dir / "history.csv", kind_ec)
+                          ? "a run (summary.json, history.csv)"
+                          : nullptr;
+  if (other)
+    throw ConfigError("-o " + path_text(o.output_dir) + ": holds " + other + ", not a reproduction; give another folder");
   std::optional<FolderLock> lock;  // one reproduction at a time in a folder
   try {
     prepare_output_folder(dir);

@@ -35,6 +35,12 @@ struct BrushFilament {
 /// and one scatter's value does not change another's draws. Throws ConfigError without [brush].
 std::vector<BrushFilament> brush_filaments(const Config& config);
 
+/// The validated configuration of each distinct filament (by group; a default Config for one that
+/// does not reach the surface): the nominal one with its length, diameter and depth, no history, no
+/// multipliers. Throws ConfigError naming the filament when a drawn one is invalid (a diameter
+/// beyond its length).
+std::vector<Config> brush_filament_configs(const Config& config, const std::vector<BrushFilament>& filaments);
+
 /// One distinct filament at its steady state: per-revolution means over its orbit's m revolutions
 /// (m = 1 when the steady state was not reached: the last complete revolution).
 struct FilamentSteadyState {
@@ -58,7 +64,7 @@ struct FilamentSteadyState {
   double ledger_residual_j = 0;
   double wall_time_s = 0;
   std::optional<NumericalFailure> failure;
-  std::string error;  // a filament that could not be built (its configuration), in words
+  std::string error;  // a run that ended without a failure and without a complete revolution, in words
 };
 
 /// What the brush puts on the workpiece, and the groups that present it (docs/brush.md).
@@ -84,6 +90,7 @@ struct BrushSummary {
   double wall_time_s = 0;
   std::optional<NumericalFailure> failure;  // the first filament's failure (or the interruption), if any
   int failed_filament = -1;                 // its index
+  std::string error;                        // a filament whose run ended without a result, in words ("" for none)
   std::vector<std::string> warnings;
 };
 
@@ -111,7 +118,8 @@ struct BrushOptions {
 
 /// Runs every distinct filament of `config` (which has [brush]) to its periodic steady state and sums
 /// the brush. Never throws for numerical trouble: a filament's failure is kept in its record and the
-/// summary (the sums then hold the other filaments). Throws ConfigError without [brush].
+/// summary (the sums then hold the other filaments). Throws ConfigError without [brush], and when a
+/// drawn filament's configuration is invalid (before anything runs, naming the filament).
 BrushResult run_brush(const Config& config, const BrushOptions& options = {});
 
 }  // namespace rotbeam

@@ -65,7 +65,11 @@ std::string filaments_csv(const BrushResult& result) {
       out += ',';
     }
     out += std::to_string(f.group + 1) + ',' + (d.reaches ? "true" : "false") + ',';
-    const char* status = !d.reaches ? "clear" : d.ran ? (d.steady ? "steady" : "not_steady") : d.failure ? "failed" : "error";
+    const char* status = !d.reaches                      ? "clear"
+                         : d.ran                         ? (d.steady ? "steady" : "not_steady")
+                         : d.failure                     ? "failed"
+                         : d.error.empty()               ? "interrupted"  // never started: the stop came first
+                                                         : "error";
     if (d.failure && d.failure->kind == FailureKind::interrupted) status = "interrupted";
     out += status;
     out += ',' + std::to_string(d.period_revolutions) + ',' + std::to_string(d.revolutions_run);
@@ -129,6 +133,7 @@ nlohmann::json brush_summary_json(const BrushResult& result, const Config& confi
                     {"message", s.failure->message}};
   else
     j["failure"] = nullptr;
+  j["error"] = s.error.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.error);
   j["config"] = config.to_json();
   return j;
 }

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <deque>
 #include <map>
 #include <mutex>
@@ -89,18 +90,10 @@ double clock_s() {
 // One distinct filament run to its steady state; its deliveries over the orbit go into `bins` once
 // per copy, shifted by the copy's phase and weighted 1/m, and into `profile` at the filament's own
 // angle, weighted (copies)/m.
-FilamentSteadyState run_distinct(const Config& base, const BrushFilament& representative,
-                                 const std::vector<const BrushFilament*>& copies, ForceBins& bins,
-                                 ForceBins& profile, const StopToken* stop) {
+FilamentSteadyState run_distinct(const Config& config, const std::vector<const BrushFilament*>& copies,
+                                 ForceBins& bins, ForceBins& profile, const StopToken* stop) {
   FilamentSteadyState s;
   const double start = clock_s();
-  Config config;
-  try {
-    config = filament_config(base, representative);
-  } catch (const ConfigError& e) {
-    s.error = e.what();
-    return s;
-  }
   const Case c = build_case(config);
   DeliveryRing ring;
   const PassResult r = run_case(c, {&ring, stop, {}});
@@ -112,9 +105,9 @@ FilamentSteadyState run_distinct(const Config& base, const BrushFilament& repres
   s.steady = r.summary.steady_state.reached;
   const std::size_t m = s.steady ? static_cast<std::size_t>(std::max(1, r.summary.steady_state.period_revolutions)) : 1;
   const auto orbit = ring.last(m);
-  if (orbit.empty()) {
+  if (orbit.empty()) {  // cannot happen for a run that ended without a failure: said, not hidden
     s.ran = false;
-    s.error = "no complete revolution was run";
+    s.error = "the run ended without a complete revolution";
     return s;
   }
   s.period_revolutions = static_cast<int>(orbit.size());
@@ -195,6 +188,27 @@ std::vector<BrushFilament> brush_filaments(const Config& config) {
   return out;
 }
 
+std::vector<Config> brush_filament_configs(const Config& config, const std::vector<BrushFilament>& filaments) {
+  int group_count = 0;
+  for (const BrushFilament& f : filaments) group_count = std::max(group_count, f.group + 1);
+  std::vector<Config> configs(group_count);
+  std::vector<char> done(group_count, 0);
+  for (const BrushFilament& f : filaments) {
+    if (done[f.group] || !(f.depth_fraction > 0.0)) continue;
+    done[f.group] = 1;
+    try {
+      configs[f.group] = filament_config(config, f);
+    } catch (const ConfigError& e) {
+      char what[200];
+      std::snprintf(what, sizeof what,
+                    "brush: filament %d (L = %.6g m, D = %.6g m, depth fraction %.6g) drawn from the scatter: ",
+                    f.index + 1, f.length_m, f.diameter_m, f.depth_fraction);
+      throw ConfigError(what + std::string(e.what()));
+    }
+  }
+  return configs;
+}
+
 BrushResult run_brush(const Config& config, const BrushOptions& options) {
   const double start = clock_s();
   BrushResult result;
@@ -215,7 +229,7 @@ BrushResult run_brush(const Config& config, const BrushOptions& options) {
     else
       result.distinct[g].reaches = false;
   }
-
+  const std::vector<Config> configs = brush_filament_configs(config, result.filaments);
   const double omega = config.beam.speed_rpm * M_PI / 30.0;
   ForceBins total(config.simulation.bin_deg, omega), profile(config.simulation.bin_deg, omega);
   // Each group's bins are summed into the total in group order, whatever order the groups finish
@@ -233,7 +247,7 @@ BrushResult run_brush(const Config& config, const BrushOptions& options) {
       [&](std::size_t j) {
         const int g = todo[j];
         ForceBins bins(config.simulation.bin_deg, omega), own(config.simulation.bin_deg, omega);
-        FilamentSteadyState s = run_distinct(config, *representative[g], copies[g], bins, own, options.stop);
+        FilamentSteadyState s = run_distinct(configs[g], copies[g], bins, own, options.stop);
         std::lock_guard<std::mutex> lock(mutex);
         result.distinct[g] = std::move(s);
         finished_bins.emplace(static_cast<int>(j), std::make_pair(std::move(bins), std::move(own)));
@@ -279,11 +293,10 @@ BrushResult run_brush(const Config& config, const BrushOptions& options) {
         s.failed_filament = f.index;
         if (d.failure)
           s.failure = d.failure;
-        else if (!d.error.empty())
-          s.failure = NumericalFailure{FailureKind::interrupted, 0.0, 0.0, d.error};
-        else
+        else if (d.error.empty())  // never started: the stop came first
           s.failure = NumericalFailure{FailureKind::interrupted, 0.0, 0.0, "not run (interrupted)"};
       }
+      if (!d.error.empty() && s.error.empty()) s.error = "filament " + std::to_string(f.index + 1) + ": " + d.error;
       continue;
     }
     (d.steady ? s.steady : s.not_steady) += 1;
