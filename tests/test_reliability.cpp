@@ -600,6 +600,29 @@ TEST(Reliability, AReproductionIsNotMixedIntoAnotherKindOfFolder) {
   fs::remove_all(out);
 }
 
+TEST(Reliability, PathsLabelsAndKeysAreShownEscaped) {
+  // A path, a sweep case's label or a key with an escape sequence or a right-to-left override was
+  // printed raw: `nothere^[[2J` cleared the terminal, U+202E reversed the rest of the line.
+  const std::string out = fresh_dir("escaped");
+  fs::create_directories(out);
+  const std::string bidi = out + "/bidi.toml";
+  std::ofstream(bidi) << "[hub]\n\"speed\u202erpm\" = 5\n";
+  for (const auto& [args, shown] : std::vector<std::pair<std::string, std::string>>{
+           {"impact \x1b[31mcase.toml", "\\u001b[31mcase.toml: no such configuration file"},
+           {"plot nothere\x1b[2J", "nothere\\u001b[2J: no such folder"},
+           {"impact a\xff" "b.toml", "a\\xffb.toml: no such configuration file"},
+           {"impact " + bidi, "hub.speed\\u202erpm = 5: unknown key"},
+           {"sweep --vary initial.start=rigid,\x1b[31mred -o OUT", "case-0002 (initial.start=\\u001b[31mred): initial.start = \"\\u001b[31mred\""},
+           {"impact --set initial.start=\"rig\\\"id\"", "initial.start = \"rig\\\"id\": must be one of"}}) {
+    const Outcome o = run(args, out);
+    EXPECT_EQ(o.status, 2) << args << ": " << o.err;
+    EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
+    EXPECT_NE(o.err.find(shown), std::string::npos) << o.err;
+    EXPECT_EQ(o.err.find('\x1b'), std::string::npos) << o.err;
+  }
+  fs::remove_all(out);
+}
+
 TEST(Reliability, AFolderThatHeldNoRunKeepsTheUsersPictures) {
   // `run -o` deleted energy.png, animation.gif, force_bins.csv… of a folder that never held a run;
   // they are removed only with an older run (its summary.json), whose pictures they are.

@@ -249,7 +249,7 @@ int run_reproduce(const ReproduceOptions& o) {
                         size_text(at_least) + ", more than the " + size_text(available) + " free in " + dir.string());
     if (bytes > kAnnounceBytes && !o.quiet)
       std::cerr << "rotbeam: note: --keep-history: the " << jobs.size() << " histories will take about "
-                << size_text(bytes) << " in " << dir.string() << std::endl;
+                << size_text(bytes) << " in " << path_text(dir.string()) << std::endl;
   }
   install_interrupt_handlers();
   const bool terminal = !o.quiet && isatty(STDERR_FILENO);
@@ -345,7 +345,7 @@ int run_reproduce(const ReproduceOptions& o) {
   const int code = run_python_module("rotbeam.reproduce", args);
   if (code == 0)
     std::cout << "the runs' files take " << size_text(folder_bytes(dir / "thesis") + folder_bytes(dir / "physical"))
-              << " under " << (dir / "thesis").string() << " and " << (dir / "physical").string()
+              << " under " << path_text((dir / "thesis").string()) << " and " << path_text((dir / "physical").string())
               << (o.keep_history ? " (every history row)" : " (histories thinned to the rows the figures draw; --keep-history keeps every row)")
               << "\n";
   return code;

@@ -85,7 +85,7 @@ void print_summary(const Config& config, const PassResult& r, const std::string&
     if (s.steady_state.sought) std::cout << "  steady state          " << s.steady_state.note << "\n";
   }
   for (const std::string& w : s.warnings) std::cout << "  warning: " << w << "\n";
-  std::cout << "  wrote " << (std::filesystem::path(dir) / "history.csv").string() << ", events.csv, "
+  std::cout << "  wrote " << path_text((std::filesystem::path(dir) / "history.csv").string()) << ", events.csv, "
             << (std::filesystem::exists(std::filesystem::path(dir) / "revolutions.csv") ? "revolutions.csv, " : "")
             << "force_bins.csv, summary.json\n";
 }

@@ -52,9 +52,9 @@ int run_sweep_command(const SweepCommandOptions& o) {
       std::string values;
       for (const std::string& ov : p.last->overrides) values += (values.empty() ? "" : ", ") + ov;
       std::fprintf(stderr, "%s %s (%s): %d/%d, ETA %s%s\n", p.last->folder.c_str(),
-                   sweep_status_name(p.last_result->status), values.c_str(), p.finished, p.total,
+                   sweep_status_name(p.last_result->status), printable(values).c_str(), p.finished, p.total,
                    duration_text(p.eta_s).c_str(),
-                   p.last_result->message.empty() ? "" : (" — " + p.last_result->message).c_str());
+                   p.last_result->message.empty() ? "" : (" — " + printable(p.last_result->message)).c_str());
     }
     std::fflush(stderr);
   };
@@ -70,8 +70,8 @@ int run_sweep_command(const SweepCommandOptions& o) {
   for (std::size_t i = 0; i < r.cases.size(); ++i)
     if (r.results[i].status == SweepStatus::failed || r.results[i].status == SweepStatus::error)
       std::cout << "  " << r.cases[i].folder << " " << sweep_status_name(r.results[i].status) << ": "
-                << r.results[i].message << "\n";
-  std::cout << "wrote " << (options.dir / "sweep.csv").string() << " and a folder per case\n";
+                << printable(r.results[i].message) << "\n";
+  std::cout << "wrote " << path_text((options.dir / "sweep.csv").string()) << " and a folder per case\n";
   if (r.interrupted > 0) {
     print_error("sweep interrupted: " + counted(r.interrupted, "case") + " not finished; run the same command again to resume");
     return kInterrupted;

@@ -155,7 +155,7 @@ void print_error(const std::string& message) {
   std::string one_line = message;
   for (char& c : one_line)
     if (c == '\n') c = ' ';
-  std::cerr << "rotbeam: error: " << one_line << std::endl;
+  std::cerr << "rotbeam: error: " << printable(one_line) << std::endl;
 }
 
 namespace {
@@ -211,7 +211,7 @@ std::string duration_text(double seconds) {
   return buf;
 }
 
-std::string path_text(const std::string& path) { return path.empty() ? "\"\"" : path; }
+std::string path_text(const std::string& path) { return path.empty() ? "\"\"" : printable(path); }
 
 std::string percent_text(double fraction) {
   const double percent = 100.0 * fraction;

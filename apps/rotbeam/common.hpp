@@ -115,7 +115,8 @@ std::string fixed(double v, int decimals);
 /// a bare number of seconds).
 std::string duration_text(double seconds);
 
-/// A path as a message shows it: "" for the empty one (not nothing before the colon).
+/// A path as a message shows it: "" for the empty one (not nothing before the colon), control and
+/// bidirectional characters escaped (printable).
 std::string path_text(const std::string& path);
 
 /// A number with 6 significant digits (%g), for messages.

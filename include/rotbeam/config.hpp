@@ -27,6 +27,11 @@ public:
   using std::runtime_error::runtime_error;
 };
 
+/// A user's text (a key, a value, a path, a sweep case's label) as a message shows it: control
+/// characters (C0, DEL, C1), bidirectional marks, embeddings, overrides and isolates as \uXXXX and
+/// bytes that are not UTF-8 as \xNN, so that a message stays one line and reads as given.
+std::string printable(const std::string& s);
+
 /// [initial] as resolved.
 struct InitialSettings {
   std::string start = "rigid";             // initial.start ("rigid" | "flexible")

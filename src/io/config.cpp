@@ -37,26 +37,17 @@ std::string computed_number(double v) {
   return buf;
 }
 
-// Control characters (a NUL, a newline) shown as \uXXXX, so that a message stays one whole line.
-std::string printable(const std::string& s) {
-  std::string out;
-  for (unsigned char c : s) {
-    if (c < 0x20 || c == 0x7f) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", c);
-      out += buf;
-    } else {
-      out += static_cast<char>(c);
-    }
-  }
-  return out;
-}
-
 // A short, single-line rendering of a TOML node for error messages, with numbers in their shortest
 // round-trip form (what the user typed: -0.0635, not -0.063500000000000001).
 std::string render(const toml::node& node) {
   if (node.is_string()) {
-    std::string s = printable(*node.value<std::string>());
+    const std::string given = *node.value<std::string>();
+    std::string quoted;
+    for (char c : given) {
+      if (c == '"' || c == '\\') quoted += '\\';
+      quoted += c;
+    }
+    std::string s = printable(quoted);
     if (s.size() > 80) s = s.substr(0, 60) + "… (" + std::to_string(s.size()) + " characters)";
     return '"' + s + '"';
   }
@@ -632,6 +623,50 @@ Config validate(toml::table& root) {
 }
 
 }  // namespace
+
+std::string printable(const std::string& s) {
+  std::string out;
+  const auto escape = [&out](const char* format, unsigned value) {
+    char buf[12];
+    std::snprintf(buf, sizeof buf, format, value);
+    out += buf;
+  };
+  for (std::size_t i = 0; i < s.size();) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    if (c < 0x80) {
+      if (c < 0x20 || c == 0x7f) escape("\\u%04x", c);
+      else out += static_cast<char>(c);
+      ++i;
+      continue;
+    }
+    // A UTF-8 sequence: its length from the lead byte, its continuation bytes checked, the
+    // shortest form and the Unicode range required; anything else is a byte shown as \xNN.
+    const std::size_t len = (c & 0xe0) == 0xc0 ? 2 : (c & 0xf0) == 0xe0 ? 3 : (c & 0xf8) == 0xf0 ? 4 : 0;
+    unsigned cp = len == 2 ? (c & 0x1fu) : len == 3 ? (c & 0x0fu) : (c & 0x07u);
+    bool valid = len != 0 && i + len <= s.size();
+    for (std::size_t k = 1; valid && k < len; ++k) {
+      const auto b = static_cast<unsigned char>(s[i + k]);
+      valid = (b & 0xc0) == 0x80;
+      cp = (cp << 6) | (b & 0x3fu);
+    }
+    if (valid)
+      valid = (len == 2 && cp >= 0x80) || (len == 3 && cp >= 0x800 && (cp < 0xd800 || cp > 0xdfff)) ||
+              (len == 4 && cp >= 0x10000 && cp <= 0x10ffff);
+    if (!valid) {
+      escape("\\x%02x", c);
+      ++i;
+      continue;
+    }
+    // C1 controls, and the marks, embeddings, overrides and isolates that reorder a terminal's line.
+    const bool hidden = cp <= 0x9f || cp == 0x061c || cp == 0x200e || cp == 0x200f || (cp >= 0x202a && cp <= 0x202e) ||
+                        (cp >= 0x2066 && cp <= 0x2069);
+    if (hidden) escape("\\u%04x", cp);
+    else out.append(s, i, len);
+    i += len;
+  }
+  return out;
+}
+
 
 nlohmann::json Config::to_json() const {
   const ImpactLaw& impact = contact.impact;
