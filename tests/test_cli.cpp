@@ -465,3 +465,19 @@ TEST(Cli, APassOutsideTheModelSaysSoAndExitsZero) {
   EXPECT_EQ(nlohmann::json::parse(shallow_summary)["validity"], "within");  // max |y_t|/L 0.09
   fs::remove_all(out);
 }
+
+TEST(Cli, ASweepNamesTheCaseFoldersOfAnEarlierGrid) {
+  // A sweep over fewer cases left an earlier grid's case folders beside its sweep.csv without a
+  // word; they are kept (the user's data) and counted in the sweep's output.
+  const std::string dir = ::testing::TempDir() + "rotbeam_cli_earlier_grid_" + std::to_string(getpid());
+  fs::remove_all(dir);
+  const std::string base = "sweep --quiet --set hub.speed_rpm=3000 --set simulation.end_angle_deg=0 -o " + dir;
+  ASSERT_EQ(run(base + " --vary surface.friction=0.1,0.2,0.3").status, 0);
+  const CliRun r = run(base + " --vary surface.friction=0.2");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("2 case folders in " + dir + " are not in this grid"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(dir + "/case-0003/summary.json"));
+  const CliRun again = run(base + " --vary surface.friction=0.1,0.2,0.3");
+  EXPECT_EQ(again.out.find("not in this grid"), std::string::npos) << again.out;
+  fs::remove_all(dir);
+}

@@ -72,6 +72,10 @@ int run_sweep_command(const SweepCommandOptions& o) {
       std::cout << "  " << r.cases[i].folder << " " << sweep_status_name(r.results[i].status) << ": "
                 << printable(r.results[i].message) << "\n";
   std::cout << "wrote " << path_text((options.dir / "sweep.csv").string()) << " and a folder per case\n";
+  if (r.other_case_folders > 0)
+    std::cout << counted(static_cast<std::size_t>(r.other_case_folders), "case folder") << " in "
+              << path_text(options.dir.string()) << (r.other_case_folders == 1 ? " is" : " are")
+              << " not in this grid (an earlier sweep's; left as they are, not in sweep.csv)\n";
   if (r.interrupted > 0) {
     print_error("sweep interrupted: " + counted(r.interrupted, "case") + " not finished; run the same command again to resume");
     return kInterrupted;

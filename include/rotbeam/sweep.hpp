@@ -69,6 +69,9 @@ struct SweepReport {
   std::vector<SweepCaseResult> results;
   int ran = 0, resumed = 0, failed = 0, errors = 0, interrupted = 0;
   bool brush = false;  // the cases are brushes (docs/brush.md): sweep.csv has the brush's columns
+  // Folders named case-N in `dir` that are no case of this grid (an earlier, larger sweep's): left
+  // as they are, and counted so that the sweep can say so.
+  int other_case_folders = 0;
 };
 
 /// Validates every case's configuration first (a bad key or value stops before anything runs:

@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <fstream>
 #include <mutex>
+#include <set>
 
 namespace rotbeam {
 
@@ -379,6 +380,16 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
     }
   }
   write_file_atomically(options.dir / "sweep.csv", sweep_csv(report));
+  std::set<std::string> ours;
+  for (const SweepCase& c : report.cases) ours.insert(c.folder);
+  std::error_code ec;
+  for (const std::filesystem::directory_entry& e : std::filesystem::directory_iterator(options.dir, ec)) {
+    const std::string name = e.path().filename().string();
+    const bool case_name = name.size() > 5 && name.rfind("case-", 0) == 0 &&
+                           name.find_first_not_of("0123456789", 5) == std::string::npos;
+    std::error_code kind_ec;
+    if (case_name && !ours.count(name) && e.is_directory(kind_ec)) ++report.other_case_folders;
+  }
   return report;
 }
 
