@@ -481,3 +481,17 @@ TEST(Cli, ASweepNamesTheCaseFoldersOfAnEarlierGrid) {
   EXPECT_EQ(again.out.find("not in this grid"), std::string::npos) << again.out;
   fs::remove_all(dir);
 }
+
+TEST(Cli, AnEmptyPathIsRefusedByEveryCommand) {
+  // `modes --csv ''` and `--plot ''` wrote nothing and exited 0; `sweep -o ''` said "Invalid
+  // argument", `plot -o ''` meant the default: one message for every option that names a file.
+  for (const std::string& args :
+       {"modes --csv ''", "modes --plot ''", "run -o ''", "sweep --vary hub.speed_rpm=600 -o ''", "plot . -o ''",
+        "animate . -o ''", "reproduce -o ''"}) {
+    const CliRun r = run(args);
+    EXPECT_EQ(r.status, 2) << args << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(": an empty path; give a name"), std::string::npos) << args << ": " << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
+}

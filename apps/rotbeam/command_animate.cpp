@@ -87,7 +87,8 @@ Command add_animate_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("animate", "An animation of a run: the filament bending through contact (GIF; MP4 with ffmpeg)");
   sub->add_option("folder", opts->folder, "A folder written by `rotbeam run`")->required();
   sub->add_option("-o,--output", opts->output,
-                  "A .gif or .mp4 file (default: DIR/animation.gif, and DIR/animation.mp4 where ffmpeg is installed)");
+                  "A .gif or .mp4 file (default: DIR/animation.gif, and DIR/animation.mp4 where ffmpeg is installed)")
+      ->check(non_empty_path());
   CLI::Option* frames = sub->add_option("--frames", opts->frames, "Number of frames (default 240, at most 2000)")->check(number_in(2, 2000, true));
   sub->add_option("--frames-per-degree", opts->frames_per_degree, "Frames per degree of hub angle instead")
       ->check(positive_at_most(1e3))
@@ -97,9 +98,9 @@ Command add_animate_command(CLI::App& app) {
                   "of a run over many)")
       ->check(hub_angle_window());
   sub->add_option("--zoom", opts->zoom_mm, "Half-width of the view around the tip [mm] (default: three surface depths, at least 2.5)")
-      ->check(positive_at_most(1e4));
+      ->check(number_in(1e-3, 1e4, false));
   sub->add_option("--magnify", opts->magnify, "Draw the deflection this many times (default 1: to scale)")
-      ->check(positive_at_most(1e6));
+      ->check(number_in(1e-3, 1e6, false));
   sub->add_option("--fps", opts->fps, "Frames per second of the file (default 20)")->check(number_in(0.1, 100.0, false));
   return [opts] {
     namespace fs = std::filesystem;
@@ -107,7 +108,7 @@ Command add_animate_command(CLI::App& app) {
     if (!fs::exists(fs::path(opts->folder), ec))  // a loop of links is not "no such folder": the system's words
       throw ConfigError(path_text(opts->folder) + ": " + (ec ? ec.message() : std::string("no such folder")));
     if (!fs::exists(fs::path(opts->folder) / "summary.json"))
-      throw ConfigError(opts->folder + ": not a run folder (no summary.json)");
+      throw ConfigError(path_text(opts->folder) + ": not a run folder (no summary.json)");
     if (!opts->output.empty()) check_output_file("-o", opts->output, {".gif", ".mp4"});
     const FolderLock lock = drawing_lock(opts->folder);  // no run replaces the files while they are drawn
     std::vector<std::string> args = {opts->folder};

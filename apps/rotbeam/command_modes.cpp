@@ -78,6 +78,11 @@ int run_modes(const ModesOptions& o) {
   const Config config = o.case_options.load();
   if (!o.plot_path.empty()) check_output_file("--plot", o.plot_path, {".png", ".pdf", ".svg"});
   if (!o.csv_path.empty()) check_output_file("--csv", o.csv_path, {});
+  // One file for both: the picture overwrote the table asked for.
+  std::error_code same_ec;
+  if (!o.csv_path.empty() && !o.plot_path.empty() &&
+      std::filesystem::weakly_canonical(o.csv_path, same_ec) == std::filesystem::weakly_canonical(o.plot_path, same_ec))
+    throw ConfigError("--plot " + path_text(o.plot_path) + ": the same file as --csv; give two names");
   std::vector<double> speeds;
   if (!o.speeds.empty()) {
     speeds = parse_speeds(o.speeds);
@@ -154,8 +159,9 @@ Command add_modes_command(CLI::App& app) {
                   "Speeds A:B:N (N points from A to B rpm) or one speed; default: 0, the Table 5-2 speeds and the case's speed")
       ->check(non_empty_list("0:3000:7 or 550"));
   sub->add_flag("--json", opts->json, "Print {\"speeds_rpm\": [...], \"frequencies_hz\": [[...], ...]}");
-  sub->add_option("--csv", opts->csv_path, "Also write the table to this CSV file");
-  sub->add_option("--plot", opts->plot_path, "Draw a Campbell diagram (with engine-order lines) into this PNG");
+  sub->add_option("--csv", opts->csv_path, "Also write the table to this CSV file")->check(non_empty_path());
+  sub->add_option("--plot", opts->plot_path, "Draw a Campbell diagram (with engine-order lines) into this PNG")
+      ->check(non_empty_path());
   return [opts] { return run_modes(*opts); };
 }
 

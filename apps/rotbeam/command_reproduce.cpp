@@ -357,7 +357,7 @@ Command add_reproduce_command(CLI::App& app) {
   auto opts = std::make_shared<ReproduceOptions>();
   CLI::App* sub = app.add_subcommand(
       "reproduce", "Regenerate the thesis's Table 5-3 and Figures 4-13 (thesis model and physical model) with a report");
-  sub->add_option("-o,--output", opts->output_dir, "Output folder (default: reproduction)");
+  sub->add_option("-o,--output", opts->output_dir, "Output folder (default: reproduction)")->check(non_empty_path());
   sub->add_option("--jobs", opts->jobs, "Threads (default: all cores)");
   sub->add_flag("--keep-history", opts->keep_history,
                 "Keep every history row of every run (about 290 MB; by default only the rows the figures draw)");

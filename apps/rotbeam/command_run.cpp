@@ -153,7 +153,7 @@ Command add_run_command(CLI::App& app) {
   auto opts = std::make_shared<RunOptions>();
   CLI::App* sub = app.add_subcommand("run", "A whole pass: impacts, contact with friction, separation; writes history, events, summary");
   opts->case_options.add_to(*sub);
-  sub->add_option("-o,--output", opts->output_dir, "Output folder (created if needed)")->required();
+  sub->add_option("-o,--output", opts->output_dir, "Output folder (created if needed)")->required()->check(non_empty_path());
   sub->add_flag("--json", opts->json, "Print summary.json instead of the human summary");
   sub->add_flag("--quiet", opts->quiet, "No progress line on stderr (shown otherwise on a terminal for runs over a second)");
   return [opts] { return run_pass_command(*opts); };

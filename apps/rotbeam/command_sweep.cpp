@@ -97,7 +97,7 @@ Command add_sweep_command(CLI::App& app) {
   sub->add_option("--vary", opts->vary, "An axis: KEY=V1,V2,… (TOML values) or KEY=A:B:N (repeatable)")
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-  sub->add_option("-o,--output", opts->output_dir, "Output folder (created if needed)")->required();
+  sub->add_option("-o,--output", opts->output_dir, "Output folder (created if needed)")->required()->check(non_empty_path());
   sub->add_option("--jobs", opts->jobs, "Threads (default: all cores)");
   sub->add_flag("--quiet", opts->quiet,
                 "No progress on stderr (otherwise a redrawn line on a terminal, a line per finished case elsewhere)");

@@ -211,6 +211,11 @@ std::string duration_text(double seconds) {
   return buf;
 }
 
+CLI::Validator non_empty_path() {
+  return CLI::Validator([](std::string& s) -> std::string { return s.empty() ? "an empty path; give a name" : ""; },
+                        "PATH");
+}
+
 std::string path_text(const std::string& path) { return path.empty() ? "\"\"" : printable(path); }
 
 std::string percent_text(double fraction) {

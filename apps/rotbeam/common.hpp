@@ -115,6 +115,10 @@ std::string fixed(double v, int decimals);
 /// a bare number of seconds).
 std::string duration_text(double seconds);
 
+/// A check for an option that names a file or folder: an empty name is refused ("an empty path")
+/// rather than taken as not given (it wrote nothing and exited 0) or passed to the system.
+CLI::Validator non_empty_path();
+
 /// A path as a message shows it: "" for the empty one (not nothing before the colon), control and
 /// bidirectional characters escaped (printable).
 std::string path_text(const std::string& path);
