@@ -495,3 +495,12 @@ TEST(Cli, AnEmptyPathIsRefusedByEveryCommand) {
     EXPECT_TRUE(r.out.empty()) << r.out;
   }
 }
+
+TEST(Cli, TheHeaderShowsAGivenValueThatReadsBack) {
+  // μ = 999.9999 was printed "μ = 1000", the upper bound of its range.
+  const std::string dir = ::testing::TempDir() + "rotbeam_cli_header_" + std::to_string(getpid());
+  const CliRun r = run("run --set surface.friction=999.9999 --set hub.speed_rpm=999999.9 --set simulation.end_angle_deg=0 -o " + dir);
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("Pass: 999999.9 rpm, depth 2.00 %, μ = 999.9999,"), std::string::npos) << r.out;
+  fs::remove_all(dir);
+}

@@ -56,7 +56,7 @@ int run_impact(const ImpactOptions& o) {
       start += (i ? ", " : "") + fixed(config.initial.modal_velocity[i], 3);
     start += "] m/s";
   }
-  std::cout << "First impact: " << number_text(config.beam.speed_rpm) << " rpm, depth "
+  std::cout << "First impact: " << given_text(config.beam.speed_rpm) << " rpm, depth "
             << percent_text(config.surface.depth_fraction) << " %, " << config.beam.modes << " modes, "
             << start << "\n"
             << "  time             t       = " << fixed(r.t, 7) << " s\n"

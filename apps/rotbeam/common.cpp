@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <cerrno>
+#include <charconv>
 #include <cctype>
 #include <cmath>
 #include <csignal>
@@ -209,6 +210,12 @@ std::string duration_text(double seconds) {
   else if (s < 48 * 3600) std::snprintf(buf, sizeof buf, "%.0f h %02.0f min", std::floor(s / 3600), std::floor(std::fmod(s, 3600) / 60));
   else std::snprintf(buf, sizeof buf, "%.0f d %02.0f h", std::floor(s / 86400), std::floor(std::fmod(s, 86400) / 3600));
   return buf;
+}
+
+std::string given_text(double v) {
+  char buf[32];
+  const auto res = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, res.ptr);
 }
 
 CLI::Validator non_empty_path() {

@@ -123,6 +123,10 @@ CLI::Validator non_empty_path();
 /// bidirectional characters escaped (printable).
 std::string path_text(const std::string& path);
 
+/// A value the user gave (a speed, μ) in a summary's header: its shortest form that reads back
+/// exactly, so that 999.9999 is not shown as the bound 1000.
+std::string given_text(double v);
+
 /// A number with 6 significant digits (%g), for messages.
 std::string number_text(double v);
 /// A fraction as a percentage for a summary line: two decimals ("2.00"), or as many significant
