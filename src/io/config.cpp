@@ -151,6 +151,11 @@ struct Parsed {
   const toml::node* until_steady_node = nullptr;
   const toml::node* steady_tolerance_node = nullptr;
   const toml::node* multipliers_node = nullptr;
+  // The adaptive scheme's own keys (refused with the thesis's fixed steps unless at their defaults).
+  const toml::node* rtol_node = nullptr;
+  const toml::node* atol_node = nullptr;
+  const toml::node* max_step_node = nullptr;
+  const toml::node* factor_node = nullptr;
   const toml::node* filaments_node = nullptr;
   const toml::node* rows_node = nullptr;
 };
@@ -269,9 +274,17 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
              one_of(k, n, {"brute_force", "shooting"}) == "shooting" ? SteadyMethod::shooting : SteadyMethod::brute_force;
          p.method_node = &n;
        }},
-      {"simulation.rtol", [](Parsed& p, auto& k, auto& n) { p.config.simulation.rtol = number_in(k, n, 0.0, 1.0, true, true); }},
+      {"simulation.rtol",
+       [](Parsed& p, auto& k, auto& n) {
+         p.config.simulation.rtol = number_in(k, n, 0.0, 1.0, true, true);
+         p.rtol_node = &n;
+       }},
       // atol bounds the error of q [m], q̇ [m/s] and the contact integrals: above 1e-3 it bounds nothing.
-      {"simulation.atol", [](Parsed& p, auto& k, auto& n) { p.config.simulation.atol = number_in(k, n, 0.0, 1e-3, true, false); }},
+      {"simulation.atol",
+       [](Parsed& p, auto& k, auto& n) {
+         p.config.simulation.atol = number_in(k, n, 0.0, 1e-3, true, false);
+         p.atol_node = &n;
+       }},
       // The step keys' floors (here and free_step_s, contact_step_s, fine_contact_step_s below) keep
       // a step far above the resolution of t at a pass's times (t + h == t is still checked at every
       // step: step_underflow). No floor can bound a pass's cost, the integrated time over the step:
@@ -279,7 +292,11 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
       // 3e6 steps and the floor 1e-11 s 3e15; at 550 rpm the half turn's 0.055 s takes 5.5e9 steps
       // of 1e-11 s. So `rotbeam run` announces a pass estimated above 1e9 steps before it starts
       // (estimate_steps, case.hpp) and its progress line shows the time left.
-      {"simulation.max_step_s", [](Parsed& p, auto& k, auto& n) { p.config.simulation.max_step_s = number_in(k, n, 1e-11, 1e-2, false, false); }},
+      {"simulation.max_step_s",
+       [](Parsed& p, auto& k, auto& n) {
+         p.config.simulation.max_step_s = number_in(k, n, 1e-11, 1e-2, false, false);
+         p.max_step_node = &n;
+       }},
       {"simulation.end_when_clear",
        [](Parsed& p, auto& k, auto& n) {
          p.config.simulation.end_when_clear = boolean(k, n);
@@ -293,6 +310,7 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
            p.config.simulation.integrating_factor = FactorUse::automatic;
          else
            fail(k, n, "must be true, false or \"auto\"");
+         p.factor_node = &n;
        }},
       {"simulation.free_step_s", [](Parsed& p, auto& k, auto& n) { p.config.simulation.free_step_s = number_in(k, n, 1e-11, 1e-3, false, false); }},
       {"simulation.contact_step_s", [](Parsed& p, auto& k, auto& n) { p.config.simulation.contact_step_s = number_in(k, n, 1e-12, 1e-4, false, false); }},
@@ -574,6 +592,17 @@ Config validate(toml::table& root) {
   if (!sim.until_steady && p.steady_tolerance_node && sim.steady_tolerance != defaults.steady_tolerance)
     fail("simulation.steady_tolerance", *p.steady_tolerance_node,
          "the steady state's tolerance: it needs simulation.until_steady = true");
+  // The adaptive scheme's tolerances, step cap and integrating factor change nothing under the
+  // thesis's fixed steps (they were accepted and ignored): refused there unless at their defaults.
+  if (sim.scheme == Scheme::thesis) {
+    const std::string why = "the adaptive scheme's; simulation.scheme = \"thesis\" takes fixed steps "
+                            "(simulation.free_step_s, simulation.contact_step_s)";
+    if (p.rtol_node && sim.rtol != defaults.rtol) fail("simulation.rtol", *p.rtol_node, why);
+    if (p.atol_node && sim.atol != defaults.atol) fail("simulation.atol", *p.atol_node, why);
+    if (p.max_step_node && sim.max_step_s != defaults.max_step_s) fail("simulation.max_step_s", *p.max_step_node, why);
+    if (p.factor_node && sim.integrating_factor != defaults.integrating_factor)
+      fail("simulation.integrating_factor", *p.factor_node, why);
+  }
   if (sim.until_steady && !p.revolutions_node) sim.revolutions = kDefaultSteadyRevolutionCap;
   // The start the configuration describes must be possible (checked through the beam and surface).
   ForeshorteningBeam beam;
