@@ -148,6 +148,16 @@ TEST(Revolutions, NoSteadyStateIsReported) {
   ASSERT_FALSE(r.summary.warnings.empty());
 }
 
+// One revolution has no earlier revolution to compare with ("within 1 revolutions (section distance 1"
+// read as a measured distance): the note says what the distance is taken from.
+TEST(Revolutions, OneRevolutionSaysItsSectionIsComparedWithTheStart) {
+  const PassResult r = run({"simulation.until_steady=true", "simulation.revolutions=1"});
+  ASSERT_FALSE(r.failure);
+  EXPECT_NE(r.summary.steady_state.note.find("not reached within 1 revolution (its section compared with the start only"),
+            std::string::npos)
+      << r.summary.steady_state.note;
+}
+
 // output.history_revolutions = K keeps the rows, events and contact intervals of the last K
 // revolutions; revolutions stay complete.
 TEST(Revolutions, HistoryWindow) {

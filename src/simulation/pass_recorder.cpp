@@ -600,12 +600,15 @@ void PassRecorder::finish(double t, const Eigen::VectorXd& q, const Eigen::Vecto
     if (st.sought && st.method == SteadyMethod::brute_force) {
       std::ostringstream m;
       if (st.reached)
-        m << "reached after " << st.after_revolutions << " revolutions, "
+        m << "reached after " << st.after_revolutions << (st.after_revolutions == 1 ? " revolution, " : " revolutions, ")
           << (st.period_revolutions == 1 ? std::string("periodic every revolution")
                                          : "periodic every " + std::to_string(st.period_revolutions) + " revolutions")
           << " (section distance over the period < " << options_.steady_tolerance << ")";
       else if (result_.failure)
         m << "not reached: the run stopped in revolution " << revolution_;
+      else if (options_.revolutions == 1)
+        m << "not reached within 1 revolution (its section compared with the start only: distance " << last_distance_
+          << ", tolerance " << options_.steady_tolerance << ")";
       else
         m << "not reached within " << options_.revolutions << " revolutions (section distance " << last_distance_
           << ", tolerance " << options_.steady_tolerance << ")";
