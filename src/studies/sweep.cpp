@@ -12,6 +12,7 @@
 
 #include <optional>
 #include <span>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -156,7 +157,27 @@ SweepAxis parse_sweep_axis(const std::string& spec) {
     // B − A overflows for ends near the largest double (-1e308:1e308 gave nan): then each value is
     // weighed from both ends instead.
     const bool wide = !std::isfinite(b - a);
+    // Integer ends are stepped exactly: through double, 1:9223372036854775807:2 gave
+    // 9223372036854779904.0, "not an integer".
+    long long ia = 0, ib = 0;
+    const auto integer = [](const std::string& text, long long& v) {
+      const std::size_t from = text.find_first_not_of(" \t"), to = text.find_last_not_of(" \t");
+      const std::string t = from == std::string::npos ? std::string() : text.substr(from, to - from + 1);
+      const char* first = t.c_str() + (!t.empty() && t[0] == '+' ? 1 : 0);
+      const auto res = std::from_chars(first, t.c_str() + t.size(), v);
+      return !t.empty() && res.ec == std::errc() && res.ptr == t.c_str() + t.size();
+    };
+    const bool integers = integer(parts[0], ia) && integer(parts[1], ib);
     for (int i = 0; i < n; ++i) {
+      if (integers) {
+        __extension__ using wide = __int128;  // (B − A)·i of two 64-bit ends fits in 128 bits
+        const wide span = static_cast<wide>(ib) - ia, step = span * i;
+        if (n == 1 || step % (n - 1) == 0) {
+          const long long v = n == 1 ? ia : static_cast<long long>(ia + step / (n - 1));
+          axis.values.push_back(std::to_string(v));
+          continue;
+        }
+      }
       const double f = n == 1 ? 0.0 : static_cast<double>(i) / (n - 1);
       axis.values.push_back(number_literal(n == 1 ? a : wide ? a * (1.0 - f) + b * f : a + (b - a) * i / (n - 1)));
     }
