@@ -58,8 +58,28 @@ class ConfigFileNotFoundError(ConfigError, FileNotFoundError):
         return f"{self.filename or _EMPTY_PATH}: no such configuration file"
 
 
+def _text_shown(s):
+    """s for a message: a lone surrogate as \\udcXX."""
+    return s.encode("utf-8", "backslashreplace").decode()
+
+
+def _text(s, where):
+    """s when it can be given to the library (UTF-8): a lone surrogate, as os.fsdecode makes of a
+    byte that is not UTF-8, is one line naming it, not pybind11's list of signatures."""
+    try:
+        s.encode("utf-8")
+    except UnicodeEncodeError:
+        raise ConfigError(f"{_text_shown(where)}: not valid text (a lone surrogate)") from None
+    return s
+
+
 def _toml_value(value, where):
     """A TOML literal for a Python value (exact for floats: repr round-trips)."""
+    if isinstance(value, numpy.ma.MaskedArray) and numpy.ma.is_masked(value):
+        masked = [int(i) for i in numpy.flatnonzero(numpy.ma.getmaskarray(value))]
+        raise ConfigError(f"{_text_shown(where)}: a masked array, element{'s' if len(masked) > 1 else ''} "
+                          f"{', '.join(map(str, masked[:5]))}{' …' if len(masked) > 5 else ''} masked; "
+                          "give a value for every element")
     if isinstance(value, bool):
         return "true" if value else "false"
     if hasattr(value, "item") and not isinstance(value, (list, tuple)) and getattr(value, "ndim", 0) == 0:
@@ -75,6 +95,7 @@ def _toml_value(value, where):
             return "inf" if value > 0 else "-inf"
         return repr(value)
     if isinstance(value, str):
+        _text(value, f"{where} = {value!r}")
         escaped = "".join(c if c not in '\\"' and ord(c) >= 0x20 and ord(c) != 0x7F else
                           {"\\": "\\\\", '"': '\\"'}.get(c, f"\\u{ord(c):04X}") for c in value)
         return '"' + escaped + '"'
@@ -112,6 +133,8 @@ def _arguments(config, overrides):
             if not isinstance(table, dict):
                 raise ConfigError(f"{section} = {table!r}: expected a table of keys, e.g. {{'{section}': {{'key': value}}}}")
             for key, value in table.items():
+                if isinstance(key, str):
+                    _text(f"{section}.{key}", f"{section}.{key}")
                 sets.append((f"{section}.{key}", _toml_value(value, f"{section}.{key}")))
     else:
         raise TypeError(f"config must be a path, a dict or None, not {type(config).__name__}")
@@ -121,7 +144,7 @@ def _arguments(config, overrides):
         for key, value in overrides.items():
             if not isinstance(key, str):
                 raise TypeError(f"override keys are dotted strings like 'hub.speed_rpm', not {key!r}")
-            sets.append((key, _toml_value(value, key)))
+            sets.append((_text(key, key), _toml_value(value, key)))
     return path, sets
 
 

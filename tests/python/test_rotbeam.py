@@ -362,3 +362,19 @@ def test_numbers_in_python_errors_are_shown_as_given():
         rotbeam.impact(overrides={"beam.modes": -2**80})
     with pytest.raises(rotbeam.ConfigError, match=r"^hub.speed_rpm = 10{30}: must be in \[0\.001, 1e\+06\]$"):
         rotbeam.impact(overrides={"hub.speed_rpm": 10**30})
+
+
+@pytest.mark.parametrize("config, overrides, message", [
+    (None, {"hub.speed\udcff": 600}, "hub.speed\\udcff: not valid text (a lone surrogate)"),
+    ({"hub": {"speed\udcff": 600}}, None, "hub.speed\\udcff: not valid text (a lone surrogate)"),
+    (None, {"initial.start": "ri\udcffgid"}, "initial.start = 'ri\\udcffgid': not valid text"),
+    (None, {"initial.modal_velocity": np.ma.masked_array([0.1, 0, 0, 0, 0], [1, 0, 0, 0, 0])},
+     "initial.modal_velocity: a masked array, element 0 masked; give a value for every element"),
+])
+def test_text_that_is_not_utf8_and_masked_arrays_are_named(config, overrides, message):
+    # A lone surrogate (os.fsdecode of a byte that is not UTF-8) gave pybind11's list of signatures;
+    # a masked element was shown as "None: a NoneType is not a configuration value".
+    with pytest.raises(rotbeam.ConfigError) as e:
+        rotbeam.impact(config, overrides)
+    assert message in str(e.value)
+    assert "\n" not in str(e.value)
