@@ -367,13 +367,13 @@ TEST(Cli, TheDepthIsShownWithTheDigitsThatTellIt) {
 }
 
 // A speed below the smallest normal double is a number (read as its nearest double, as TOML reads
-// it; it was "not a number"); one beyond the largest double is refused as not finite.
+// it; it was "not a number"); one beyond the largest double is refused, as such.
 TEST(Cli, ASubnormalNumberIsANumber) {
   const CliRun tiny = run("modes --speeds-rpm 1e-320 --json");
   EXPECT_EQ(tiny.status, 0) << tiny.err;
   const CliRun huge = run("modes --speeds-rpm 1e999");
   EXPECT_EQ(huge.status, 2);
-  EXPECT_NE(huge.err.find("'1e999' is not a number"), std::string::npos) << huge.err;
+  EXPECT_NE(huge.err.find("'1e999' is beyond the largest number"), std::string::npos) << huge.err;
 }
 
 // An empty list is refused (it was taken as "not given" and the defaults ran, exit 0).
@@ -503,4 +503,20 @@ TEST(Cli, TheHeaderShowsAGivenValueThatReadsBack) {
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("Pass: 999999.9 rpm, depth 2.00 %, μ = 999.9999,"), std::string::npos) << r.out;
   fs::remove_all(dir);
+}
+
+TEST(Cli, ALinkToNowhereAndNoImpactInJson) {
+  // -o naming a dangling link said "cannot create the output folder (File exists)"; impact --json
+  // with no impact printed nothing, so a script read empty input.
+  const std::string link = ::testing::TempDir() + "rotbeam_cli_dangling_" + std::to_string(getpid());
+  fs::remove(link);
+  fs::create_symlink(link + "-nowhere", link);
+  const CliRun r = run("run --set simulation.end_angle_deg=0 -o " + link);
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find(link + ": a link to " + link + "-nowhere, which does not exist; give a folder"), std::string::npos)
+      << r.err;
+  fs::remove(link);
+  const CliRun none = run("impact --set initial.modal_velocity=[0.1,0,0,0,0] --set simulation.end_angle_deg=-20 --json");
+  EXPECT_EQ(none.status, 3) << none.err;
+  EXPECT_EQ(none.out, "null\n");
 }

@@ -40,6 +40,7 @@ int run_impact(const ImpactOptions& o) {
   if (!r.found) {
     print_error("no impact: the tip stays clear of the surface up to the end angle " +
                 fixed(config.simulation.end_angle_deg, 3) + " deg (closest gap " + std::to_string(r.min_gap) + " m)");
+    if (o.json) std::cout << "null\n";  // a script reading the JSON gets a value, not empty input
     return kNoImpact;
   }
   const double theta_deg = r.theta * 180.0 / M_PI;

@@ -35,7 +35,13 @@ std::vector<double> parse_speeds(const std::string& text) {
   for (std::string part; std::getline(ss, part, ':');) parts.push_back(part);
   auto number = [&](const std::string& s) {
     double v = 0;
-    if (!detail::parse_finite_number(s, v)) throw ConfigError(what + "'" + s + "' is not a number");
+    if (!detail::parse_finite_number(s, v)) {
+      errno = 0;
+      char* end = nullptr;
+      std::strtod(s.c_str(), &end);
+      const bool overflow = errno == ERANGE && end == s.c_str() + s.size();
+      throw ConfigError(what + "'" + s + (overflow ? "' is beyond the largest number" : "' is not a number"));
+    }
     if (v < 0 || v > 1e6) throw ConfigError(what + "speeds must be in [0, 1000000] rpm");
     return v;
   };

@@ -336,7 +336,8 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
        [](Parsed& p, auto& k, auto& n) {
          // The last K revolutions' history and events, or "all" (stored as 0).
          if (n.is_string()) {
-           one_of(k, n, {"all"});
+           if (*n.template value<std::string>() != "all")
+             fail(k, n, "must be a whole number of revolutions (at least 1) or \"all\"");
            p.config.simulation.history_revolutions = 0;
          } else if (n.is_integer()) {
            p.config.simulation.history_revolutions = integer_in(k, n, 1, 10000000);
@@ -508,7 +509,9 @@ Config validate(toml::table& root) {
     if (!sec) fail(section, section_node, "unknown top-level key; expected a [section]" + suggestion(section));
     for (auto&& [name_key, value] : *sec) {
       const std::string key = section + "." + std::string(name_key.str());
-      if (!by_key.count(key)) fail(key, value, "unknown key" + suggestion(key));
+      // An empty key name is shown quoted (it read `hub. = 5`).
+      if (!by_key.count(key))
+        fail(name_key.str().empty() ? section + ".\"\"" : key, value, "unknown key" + suggestion(key));
     }
   }
   for (const auto& [k, setter] : schema()) {
@@ -794,7 +797,11 @@ toml::table read_file(const std::optional<std::string>& path) {
   std::ifstream probe(*path);
   if (!probe) throw ConfigError(shown + ": cannot read the configuration file (" + std::generic_category().message(errno) + ")");
   try {
-    root = toml::parse_file(*path);
+    // Read whole here, not by toml++'s parse_file, which sizes the file first: a file under /proc
+    // reports size 0 and read as "could not be opened for reading".
+    const std::string text((std::istreambuf_iterator<char>(probe)), std::istreambuf_iterator<char>());
+    if (probe.bad()) throw ConfigError(shown + ": cannot read the configuration file");
+    root = toml::parse(text, *path);
   } catch (const toml::parse_error& e) {
     throw ConfigError(shown + ":" + std::to_string(e.source().begin.line) + ":" +
                       std::to_string(e.source().begin.column) + ": TOML syntax error: " + printable(std::string(e.description())));

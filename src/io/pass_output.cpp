@@ -254,6 +254,10 @@ double available_disk_bytes(const std::filesystem::path& dir) {
 
 void prepare_output_folder(const std::filesystem::path& dir) {
   std::error_code ec;
+  // A link to nowhere: "cannot create the output folder (File exists)" did not say why.
+  if (std::filesystem::is_symlink(std::filesystem::symlink_status(dir, ec)) && !std::filesystem::exists(dir, ec))
+    throw std::runtime_error(dir.string() + ": a link to " + std::filesystem::read_symlink(dir, ec).string() +
+                             ", which does not exist; give a folder");
   std::filesystem::create_directories(dir, ec);
   if (ec || !std::filesystem::is_directory(dir))
     throw std::runtime_error(dir.string() + ": cannot create the output folder (" +
