@@ -520,3 +520,13 @@ TEST(Cli, ALinkToNowhereAndNoImpactInJson) {
   EXPECT_EQ(none.status, 3) << none.err;
   EXPECT_EQ(none.out, "null\n");
 }
+
+TEST(Cli, ARangeWithSpacesAboutItsNumbersIsRead) {
+  // ' 3 : 4 :2' read "' 3 ' is not a number"; --set and --vary's keys are trimmed, so are the ends.
+  const std::string dir = ::testing::TempDir() + "rotbeam_cli_spaced_range_" + std::to_string(getpid());
+  fs::remove_all(dir);
+  const CliRun r = run("sweep --quiet --set hub.speed_rpm=3000 --set simulation.end_angle_deg=0 --vary 'beam.modes= 3 : 4 :2' -o " + dir);
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir + "/case-0002/summary.json"));
+  fs::remove_all(dir);
+}

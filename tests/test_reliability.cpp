@@ -597,6 +597,19 @@ TEST(Reliability, AReproductionIsNotMixedIntoAnotherKindOfFolder) {
     EXPECT_FALSE(fs::exists(out + "/manifest.json"));
     EXPECT_FALSE(fs::exists(out + "/thesis"));
   }
+  // The reverse: a run or a sweep into a reproduction's folder.
+  fs::remove_all(out);
+  fs::create_directories(out);
+  for (const char* f : {"manifest.json", "report.md"}) std::ofstream(out + "/" + f) << "x\n";
+  for (const auto& [args, kind] : std::vector<std::pair<std::string, std::string>>{
+           {"run --set simulation.end_angle_deg=0 -o OUT", "not a run"},
+           {"sweep --set simulation.end_angle_deg=0 --vary hub.speed_rpm=600 -o OUT", "not a sweep"}}) {
+    const Outcome o = run(args, out);
+    EXPECT_EQ(o.status, 2) << o.err;
+    EXPECT_NE(o.err.find(": holds a reproduction (manifest.json, report.md), " + kind), std::string::npos) << o.err;
+    EXPECT_FALSE(fs::exists(out + "/summary.json"));
+    EXPECT_FALSE(fs::exists(out + "/sweep.csv"));
+  }
   fs::remove_all(out);
 }
 

@@ -87,7 +87,8 @@ int run_modes(const ModesOptions& o) {
   // One file for both: the picture overwrote the table asked for.
   std::error_code same_ec;
   if (!o.csv_path.empty() && !o.plot_path.empty() &&
-      std::filesystem::weakly_canonical(o.csv_path, same_ec) == std::filesystem::weakly_canonical(o.plot_path, same_ec))
+      std::filesystem::weakly_canonical(std::filesystem::absolute(o.csv_path, same_ec), same_ec) ==
+          std::filesystem::weakly_canonical(std::filesystem::absolute(o.plot_path, same_ec), same_ec))
     throw ConfigError("--plot " + path_text(o.plot_path) + ": the same file as --csv; give two names");
   std::vector<double> speeds;
   if (!o.speeds.empty()) {

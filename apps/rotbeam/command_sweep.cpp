@@ -75,7 +75,7 @@ int run_sweep_command(const SweepCommandOptions& o) {
   if (r.other_case_folders > 0)
     std::cout << counted(static_cast<std::size_t>(r.other_case_folders), "case folder") << " in "
               << path_text(options.dir.string()) << (r.other_case_folders == 1 ? " is" : " are")
-              << " not in this grid (an earlier sweep's; left as they are, not in sweep.csv)\n";
+              << " not in this grid (an earlier sweep's: kept, not in sweep.csv)\n";
   if (r.interrupted > 0) {
     print_error("sweep interrupted: " + counted(r.interrupted, "case") + " not finished; run the same command again to resume");
     return kInterrupted;

@@ -309,6 +309,8 @@ PassFiles::PassFiles(const std::filesystem::path& dir, int n, int history_revolu
     throw std::runtime_error(dir.string() + ": holds a sweep (sweep.csv), not a run; give another folder");
   if (fs::exists(dir / "workpiece.csv"))
     throw std::runtime_error(dir.string() + ": holds a brush (workpiece.csv), not a run; give another folder");
+  if (fs::exists(dir / "manifest.json") && fs::exists(dir / "report.md"))
+    throw std::runtime_error(dir.string() + ": holds a reproduction (manifest.json, report.md), not a run; give another folder");
   prepare_output_folder(dir);
   lock_ = std::make_unique<FolderLock>(dir);  // one run at a time in a folder
   try {

@@ -145,6 +145,10 @@ SweepAxis parse_sweep_axis(const std::string& spec) {
     std::size_t start = 0;
     for (std::size_t p; (p = rest.find(':', start)) != std::string::npos; start = p + 1) parts.push_back(rest.substr(start, p - start));
     parts.push_back(rest.substr(start));
+    for (std::string& part : parts) {  // ' 3 : 5 :3' read "' 3 ' is not a number"; --set trims too
+      const std::size_t from = part.find_first_not_of(" \t"), to = part.find_last_not_of(" \t");
+      part = from == std::string::npos ? std::string() : part.substr(from, to - from + 1);
+    }
     auto number = [&](const std::string& s) {
       double v = 0;
       if (!detail::parse_finite_number(s, v)) throw ConfigError("--vary " + spec + ": '" + s + "' is not a number");
@@ -261,6 +265,9 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
   // A run's folder (its summary.json) is not made a sweep's as well: `plot` would draw one of the two.
   if (std::filesystem::exists(options.dir / "summary.json"))
     throw ConfigError("-o " + options.dir.string() + ": holds a run (summary.json), not a sweep; give another folder");
+  if (std::filesystem::exists(options.dir / "manifest.json") && std::filesystem::exists(options.dir / "report.md"))
+    throw ConfigError("-o " + options.dir.string() +
+                      ": holds a reproduction (manifest.json, report.md), not a sweep; give another folder");
   std::optional<FolderLock> lock;  // one sweep at a time in a folder (each case folder has its own)
   try {
     prepare_output_folder(options.dir);
