@@ -208,7 +208,8 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
       {"impact.restitution",
        [](Parsed& p, auto& k, auto& n) {
          if (n.is_string()) {
-           one_of(k, n, {"yigit"});
+           // One word among numbers: "must be one of \"yigit\"" left the numbers out.
+           if (*n.template value<std::string>() != "yigit") fail(k, n, "must be \"yigit\" or a number in [0, 1]");
            p.config.contact.impact.model = RestitutionModel::yigit;
          } else if (n.is_number()) {
            p.config.contact.impact.model = RestitutionModel::constant;
