@@ -49,13 +49,13 @@ class ConfigFileNotFoundError(ConfigError, FileNotFoundError):
     FileNotFoundError (errno ENOENT, filename) for code that expects one."""
 
     def __init__(self, path):
-        ConfigError.__init__(self, f"{path or _EMPTY_PATH}: no such configuration file")
+        ConfigError.__init__(self, f"{_text_shown(path) or _EMPTY_PATH}: no such configuration file")
         self.errno = errno.ENOENT
         self.strerror = "no such configuration file"
         self.filename = path
 
     def __str__(self):
-        return f"{self.filename or _EMPTY_PATH}: no such configuration file"
+        return f"{_text_shown(self.filename) or _EMPTY_PATH}: no such configuration file"
 
 
 def _text_shown(s):
@@ -75,6 +75,8 @@ def _text(s, where):
 
 def _toml_value(value, where):
     """A TOML literal for a Python value (exact for floats: repr round-trips)."""
+    if value is numpy.ma.masked or (isinstance(value, numpy.ma.MaskedArray) and value.ndim == 0 and value.mask):
+        raise ConfigError(f"{_text_shown(where)}: a masked value; give a value")
     if isinstance(value, numpy.ma.MaskedArray) and numpy.ma.is_masked(value):
         masked = [int(i) for i in numpy.flatnonzero(numpy.ma.getmaskarray(value))]
         raise ConfigError(f"{_text_shown(where)}: a masked array, element{'s' if len(masked) > 1 else ''} "

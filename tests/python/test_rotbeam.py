@@ -370,6 +370,8 @@ def test_numbers_in_python_errors_are_shown_as_given():
     (None, {"initial.start": "ri\udcffgid"}, "initial.start = 'ri\\udcffgid': not valid text"),
     (None, {"initial.modal_velocity": np.ma.masked_array([0.1, 0, 0, 0, 0], [1, 0, 0, 0, 0])},
      "initial.modal_velocity: a masked array, element 0 masked; give a value for every element"),
+    (None, {"hub.speed_rpm": np.ma.masked}, "hub.speed_rpm: a masked value; give a value"),
+    ("c\udcffase.toml", None, "c\\udcffase.toml: no such configuration file"),
 ])
 def test_text_that_is_not_utf8_and_masked_arrays_are_named(config, overrides, message):
     # A lone surrogate (os.fsdecode of a byte that is not UTF-8) gave pybind11's list of signatures;
