@@ -315,6 +315,9 @@ TEST(Brush, CommandLine) {
   EXPECT_FALSE(fs::exists(dir + "-run"));
   std::tie(code, out) = cli("impact --set brush.rows=2");
   EXPECT_EQ(code, 2);
+  std::tie(code, out) = cli("brush --set brush.filaments=2 -o ''");
+  EXPECT_EQ(code, 2);
+  EXPECT_NE(out.find("an empty path"), std::string::npos) << out;
   std::tie(code, out) = cli("brush -o " + dir + "-none");
   EXPECT_EQ(code, 2);
   EXPECT_NE(out.find("no [brush] section"), std::string::npos) << out;

@@ -119,7 +119,7 @@ Command add_brush_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "brush", "A brush of many filaments at their steady state: force, torque and power on the workpiece");
   opts->case_options.add_to(*sub);
-  sub->add_option("-o,--output", opts->output_dir, "Output folder (created if needed)")->required();
+  sub->add_option("-o,--output", opts->output_dir, "Output folder (created if needed)")->required()->check(non_empty_path());
   sub->add_option("--jobs", opts->jobs, "Threads (default: all cores)");
   sub->add_flag("--json", opts->json, "Print summary.json instead of the human summary");
   sub->add_flag("--quiet", opts->quiet, "No progress line on stderr");
