@@ -325,6 +325,15 @@ TEST(Brush, CommandLine) {
   EXPECT_EQ(code, 2);
   EXPECT_NE(out.find("holds a brush"), std::string::npos) << out;
   EXPECT_TRUE(complete_run_folder(dir));  // untouched
+  // A reproduction's folder is not mixed with a brush either.
+  fs::create_directories(dir + "-rep");
+  std::ofstream(dir + "-rep/manifest.json") << "{}\n";
+  std::ofstream(dir + "-rep/report.md") << "# report\n";
+  std::tie(code, out) = cli("brush --set brush.filaments=2 -o " + dir + "-rep");
+  EXPECT_EQ(code, 2);
+  EXPECT_NE(out.find("holds a reproduction"), std::string::npos) << out;
+  EXPECT_FALSE(fs::exists(dir + "-rep/workpiece.csv"));
+  fs::remove_all(dir + "-rep");
   std::tie(code, out) = cli("brush --set brush.filaments=2 --set brush.seed=-3 -o " + dir);
   EXPECT_EQ(code, 2);
   EXPECT_NE(out.find("brush.seed = -3"), std::string::npos) << out;

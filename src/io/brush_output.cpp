@@ -145,6 +145,8 @@ BrushFiles::BrushFiles(const std::filesystem::path& dir) : dir_(dir) {
     throw std::runtime_error(dir.string() + ": holds a sweep (sweep.csv), not a brush; give another folder");
   if (fs::exists(dir / "history.csv", ec))
     throw std::runtime_error(dir.string() + ": holds a run (history.csv), not a brush; give another folder");
+  if (fs::exists(dir / "manifest.json", ec) && fs::exists(dir / "report.md", ec))
+    throw std::runtime_error(dir.string() + ": holds a reproduction (manifest.json, report.md), not a brush; give another folder");
   prepare_output_folder(dir);
   lock_ = std::make_unique<FolderLock>(dir);
   for (const char* name : kFiles)
