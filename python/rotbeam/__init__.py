@@ -27,6 +27,10 @@ if sys.argv[:1] == ["-m"]:  # `python3 -m rotbeam.plots` (what `rotbeam plot` ru
 try:  # every result holds numpy arrays: without numpy, say so here in one line, not deep inside a run
     import numpy  # noqa: F401
 except ImportError:
+    if sys.argv[:1] == ["-m"]:
+        from . import _interrupt
+        if _interrupt.interrupted:  # a Ctrl-C broke numpy's import: the interruption, not a missing numpy
+            sys.exit(130)
     _hint = (f"rotbeam needs numpy, which {sys.executable} lacks: apt-get install python3-numpy "
              "python3-matplotlib and use /usr/bin/python3 (Debian), or pip install numpy matplotlib")
     if sys.argv[:1] == ["-m"]:  # `python3 -m rotbeam.plots` (what `rotbeam plot` runs): the CLI's one line

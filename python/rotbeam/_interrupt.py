@@ -7,8 +7,15 @@ import signal
 # The write end of the pipe `rotbeam` gave this process (ROTBEAM_RESULT_FD), None when run by hand.
 _result_fd = None
 
+# Set once SIGINT/SIGTERM arrived: an import that the SystemExit below broke may surface as an
+# ImportError (a module's `except` turns it into one), which is then the interruption, not a
+# missing package.
+interrupted = False
+
 
 def _interrupted(signum, frame):
+    global interrupted
+    interrupted = True
     raise SystemExit(130)
 
 

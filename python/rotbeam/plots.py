@@ -37,6 +37,10 @@ try:
     import matplotlib.pyplot as plt
     import numpy as np
 except ImportError as missing:
+    if __name__ == "__main__":
+        from rotbeam import _interrupt
+        if _interrupt.interrupted:  # a Ctrl-C broke the import: the interruption, not a missing package
+            sys.exit(130)
     _HINT = (f"rotbeam.plots needs numpy and matplotlib for {sys.executable} (Debian: apt-get install "
              f"python3-numpy python3-matplotlib): {missing}")
     if __name__ == "__main__":
