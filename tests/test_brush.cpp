@@ -157,7 +157,7 @@ TEST(Brush, LedgerClosesPerRevolution) {
   ASSERT_FALSE(b.summary.failure);
   const BrushSummary& s = b.summary;
   EXPECT_GT(s.distinct_filaments, 1);
-  const double sum = s.hub_work_j + s.friction_work_j + s.damping_work_j + s.impact_loss_j;
+  const double sum = s.hub_work_j + s.friction_work_j + s.surface_work_j + s.damping_work_j + s.impact_loss_j;
   EXPECT_LT(std::abs(sum - s.energy_change_j), 1e-8 * std::abs(s.hub_work_j));
   EXPECT_LT(std::abs(s.energy_change_j), 1e-6 * std::abs(s.hub_work_j));  // steady: the filaments end where they began
   EXPECT_GT(s.hub_work_j, 0.0);

@@ -155,8 +155,9 @@ TEST(Config, ResolvedJsonRoundTripsThroughToml) {
   // 33, impact.friction, beam.damping_ratio, simulation.{revolutions, until_steady, steady_tolerance,
   // steady_method, multipliers}, output.{history_revolutions, near_surface_interval_s,
   // near_surface_gap_m, bin_deg}, simulation.{integrating_factor, end_when_clear}, brush.{filaments,
-  // rows, row_phase_deg, phase_jitter_deg, length_scatter, diameter_scatter, seed}
-  EXPECT_EQ(config_keys().size(), 53u);
+  // rows, row_phase_deg, phase_jitter_deg, length_scatter, diameter_scatter, seed}, surface.{shape,
+  // radius_m, speed_rpm, clearance_m, lobes, lobe_amplitude_m, lobe_law}
+  EXPECT_EQ(config_keys().size(), 60u);
   const Config d = load_config_string("", {"beam.modes=3", "beam.damping_ratio=[0.01,0.02,0.03]"});
   EXPECT_EQ(d.to_json()["beam"]["damping_ratio"], nlohmann::json::parse("[0.01,0.02,0.03]"));
   const Config one = load_config_string("[beam]\ndamping_ratio = 0.02\n", {});

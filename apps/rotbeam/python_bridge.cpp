@@ -27,10 +27,12 @@ volatile sig_atomic_t g_forwarded = 0;  // the interrupt passed on to it (0: non
 
 // SIGINT/SIGTERM while the plotting module runs: passed on to it, so that it stops and this process
 // removes its scratch files and reports the interrupt, instead of dying first and leaving an
-// orphan behind.
+// orphan behind. It is passed on as SIGTERM: before the module has installed its handler (while
+// the interpreter starts), SIGTERM ends Python silently, where SIGINT would print a KeyboardInterrupt
+// traceback; once installed, the handler ends it quietly with 130 either way.
 void forward_signal(int signal) {
   g_forwarded = signal;
-  if (g_child > 0) ::kill(static_cast<pid_t>(g_child), signal);
+  if (g_child > 0) ::kill(static_cast<pid_t>(g_child), SIGTERM);
 }
 
 // Installs forward_signal for SIGINT and SIGTERM for its lifetime, then restores what was there.
@@ -100,6 +102,9 @@ int run_python_module(const std::string& module, const std::vector<std::string>&
     // remove its temporaries; a parent already gone before the request took effect is checked.
     ::prctl(PR_SET_PDEATHSIG, SIGTERM);
     if (::getppid() != parent) _exit(kInterrupted);
+    // Its own process group: a Ctrl-C at the terminal reaches rotbeam alone, which passes it on
+    // (forward_signal), instead of reaching the interpreter mid-start as well.
+    ::setpgid(0, 0);
     ::close(report[0]);
     ::fcntl(report[1], F_SETFD, 0);  // kept across exec
     setenv("ROTBEAM_RESULT_FD", std::to_string(report[1]).c_str(), 1);
@@ -111,7 +116,7 @@ int run_python_module(const std::string& module, const std::vector<std::string>&
   }
   ::close(report[1]);
   g_child = pid;
-  if (pid > 0 && g_forwarded != 0) ::kill(pid, g_forwarded);  // a signal between fork and here
+  if (pid > 0 && g_forwarded != 0) ::kill(pid, SIGTERM);  // a signal between fork and here
   int status = 0;
   if (pid > 0) {
     pid_t waited;

@@ -60,7 +60,8 @@ struct FilamentSteadyState {
   double first_contact_deg = NAN, last_contact_deg = NAN;  // relative angle of its first and last delivery of momentum
   double along_min_m = NAN, along_max_m = NAN;             // where its tip touched, along the surface
   // The ledger per revolution (means over the orbit) and its largest residual [J].
-  double hub_work_j = 0, friction_work_j = 0, damping_work_j = 0, impact_loss_j = 0, energy_change_j = 0;
+  double hub_work_j = 0, friction_work_j = 0, surface_work_j = 0, damping_work_j = 0, impact_loss_j = 0,
+         energy_change_j = 0;
   double ledger_residual_j = 0;
   double wall_time_s = 0;
   std::optional<NumericalFailure> failure;
@@ -78,9 +79,10 @@ struct BrushSummary {
   // The contact zone: the relative angles over which any filament delivers momentum, and the
   // extent along the surface of where tips touch it.
   double contact_zone_from_deg = NAN, contact_zone_to_deg = NAN, contact_zone_deg = 0, contact_zone_width_m = 0;
-  // The brush's ledger per revolution, summed over the filaments: hub + friction + damping + impact
+  // The brush's ledger per revolution, summed over the filaments: hub + friction + surface + damping + impact
   // loss = energy change (0 on a periodic orbit); the residual is the largest filament's, summed.
-  double hub_work_j = 0, friction_work_j = 0, damping_work_j = 0, impact_loss_j = 0, energy_change_j = 0;
+  double hub_work_j = 0, friction_work_j = 0, surface_work_j = 0, damping_work_j = 0, impact_loss_j = 0,
+         energy_change_j = 0;
   double ledger_residual_j = 0;
   // Dimensionless groups: depth p = d/L; speed Ω/ω₁ (ω₁ the first bending frequency of the nominal
   // cantilever at rest, 1.87510² √(EI/(ρAL⁴))); force per filament F̄/(3EI·pL/L³) (the mean

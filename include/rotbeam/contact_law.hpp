@@ -36,6 +36,7 @@ struct ContactLoad {
   double moment = 0;          // its moment about the hub axis, X_t F_Y − Y_t F_X [N m]
   double power = 0;           // q̇ᵀQ_contact [W], the rate of change of the Jacobi integral
   double slip_power = 0;      // F_t V_t [W] (≤ 0)
+  double surface_power = 0;   // F_t (V_s·t) [W]: a moving surface's power on the tip through friction (0 at rest)
   double slip = 0;            // slip direction s_t used
 };
 

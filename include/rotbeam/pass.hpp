@@ -48,7 +48,7 @@ struct ContactInterval {
 };
 
 /// One revolution of a run over many (SPEC §11, revolutions.csv). Works are signed as energy given
-/// to the filament; per revolution hub_work_j + friction_work_j + damping_work_j + impact_loss_j =
+/// to the filament; per revolution hub_work_j + friction_work_j + surface_work_j + damping_work_j + impact_loss_j =
 /// energy_change_j (ledger_residual_j is the difference). Angles are relative to the revolution,
 /// in (−180°, 180°], 0° where the undeformed filament points at the surface's deepest point.
 struct RevolutionRecord {
@@ -61,6 +61,7 @@ struct RevolutionRecord {
   double last_separation_deg = NAN;     // the last impact or contact end; NaN: none
   double normal_impulse_n_s = 0;
   double friction_work_j = 0;
+  double surface_work_j = 0;            // a moving surface's work on the tip through friction (0 at rest)
   double damping_work_j = 0;
   double impact_loss_j = 0;
   double hub_work_j = 0;
@@ -129,10 +130,13 @@ struct PassSummary {
   double peak_normal_force_n = 0;
   double mean_normal_force_n = 0;
   double normal_impulse_n_s = 0;
-  double friction_work_j = 0;
+  double friction_work_j = 0;      // ∫F_t V_t dt ≤ 0, V_t the slip relative to the surface [J]
+  // ∫F_t (V_s·t) dt: a moving surface's (a spinning workpiece's) work on the tip through friction in
+  // sustained contact; 0 for a surface at rest. At impacts its part is in impact_loss_j [J].
+  double surface_work_j = 0;
   double damping_work_j = 0;       // −∫q̇ᵀCq̇ dt ≤ 0, the beam's damping (SPEC §11) [J]
   // The energy ledger in the inertial frame (SPEC §7, §11), works signed as energy given to the
-  // filament: hub_work_j + friction_work_j + damping_work_j + impact_loss_j = energy_change_j.
+  // filament: hub_work_j + friction_work_j + surface_work_j + damping_work_j + impact_loss_j = energy_change_j.
   double hub_work_j = 0;            // ω ∫τ dt including the impulsive part, from the angular-momentum balance [J]
   double hub_impulsive_work_j = 0;  // the hub's work during the impacts (the constraint moves) [J]
   double impact_loss_j = 0;         // the contact impulses' work on the tip, −(energy the impacts dissipate) ≤ 0 [J]
@@ -143,6 +147,8 @@ struct PassSummary {
   // simulation.end_when_clear: the angle at which the pass ended because the tip could no longer
   // reach the surface before end_angle_deg; NaN when it ran to its end angle.
   double ended_clear_deg = NAN;
+  // Runs over revolutions: the last complete revolution's record (none before the first completes).
+  std::optional<RevolutionRecord> last_revolution;
   long steps = 0;
   long rhs_evaluations = 0;
   long corrector_iterations = 0;

@@ -17,8 +17,9 @@ public:
   void contact_geometry(TipKinematics& tip) const override;
   /// θ* = −acos(d/r) + 2πk, the first such angle ≥ θ_from (NaN when d ≥ r: never reached).
   double first_contact_angle(double radius, double theta_from) const override;
-  /// r cos θ − d: r − d when [θ_from, θ_to] holds a whole turn 2πk, else its larger end.
-  double max_gap_on_arc(double radius, double theta_from, double theta_to) const override;
+  /// r cos θ − d + δ: r − d + δ when [θ_from, θ_to] holds a whole turn 2πk, else at its larger end (the
+  /// gap is a signed distance).
+  double max_gap_on_arc(double radius, double theta_from, double theta_to, double excursion) const override;
   /// The plane x = d is deepest along +X: θ = 0.
   double deepest_angle() const override { return 0.0; }
   nlohmann::json describe() const override;

@@ -49,6 +49,7 @@ struct StepIntegrals {
   double contact_moment = 0;     // ∫ (X_t F_Y − Y_t F_X) dt, the contact force's angular impulse about the hub [N m s]
   double peak_normal_force = 0;  // the largest F_n over the step, its interior included [N]
   double damping_work = 0;       // −∫ q̇ᵀC q̇ dt ≤ 0, the work of the beam's damping (SPEC §11) [J]
+  double surface_work = 0;       // ∫ F_t (V_s·t) dt [J]: a moving surface's work through friction
 };
 
 enum class Root { none, gap_closes, multiplier_vanishes, slip_stops };

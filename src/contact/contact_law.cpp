@@ -35,6 +35,7 @@ ContactLoad contact_load(const FrictionModel& friction, const TipKinematics& tip
   l.moment = tip.X * l.force_y - tip.Y * l.force_x;
   l.power = qd.dot(generalized_force);
   l.slip_power = l.friction_force * tip.slip_speed;
+  l.surface_power = l.friction_force * (tip.surface_vx * tip.tangent_x + tip.surface_vy * tip.tangent_y);
   return l;
 }
 

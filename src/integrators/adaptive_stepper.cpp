@@ -42,8 +42,9 @@ constexpr int kSamplesPerStep = 4;  // interior samples of the dense output per 
 // Free flight samples the gap at least this many times per period of the highest linear mode, so
 // that a step spanning several of its periods (the integrating factor allows it) misses no touch.
 constexpr double kSamplesPerPeriod = 8.0;
-constexpr int kIntegrals = 5;       // W, W_f, I_n, I_m, W_d after q and q̇ in the state
+constexpr int kIntegrals = 6;       // W, W_f, I_n, I_m, W_d, W_s after q and q̇ in the state
 constexpr int kDampingWork = 4;     // W_d's place among them
+constexpr int kSurfaceWork = 5;     // W_s's (a moving surface's work through friction)
 constexpr int kBrentBits = 30;      // a maximum or minimum on the dense output to ~1e-9 of its bracket
 // An accepted step shorter than this fraction of the pass means the tolerance cannot be met in
 // double precision (at rtol ≥ 1e-13 the steps stay above ~1e-9 s for a pass of ~1e-2 s).
@@ -163,7 +164,8 @@ private:
     return std::max(kSamplesPerStep, static_cast<int>(std::ceil(kSamplesPerPeriod * h * highest_hz_)));
   }
   StepIntegrals integrals_of(const State& x) const {
-    return {x[2 * n_], x[2 * n_ + 1], x[2 * n_ + 2], x[2 * n_ + 3], 0.0, x[2 * n_ + kDampingWork]};
+    return {x[2 * n_], x[2 * n_ + 1], x[2 * n_ + 2], x[2 * n_ + 3], 0.0, x[2 * n_ + kDampingWork],
+            x[2 * n_ + kSurfaceWork]};
   }
   void store(FilamentState& s) const {
     s.t = t_;
@@ -202,6 +204,7 @@ private:
     dxdt[2 * n_ + 1] = load.slip_power;
     dxdt[2 * n_ + 2] = load.normal_force;
     dxdt[2 * n_ + 3] = load.moment;
+    dxdt[2 * n_ + kSurfaceWork] = load.surface_power;
     dxdt[2 * n_ + kDampingWork] = damped_ ? -sys_.beam.dissipation(qd) : 0.0;
   }
 

@@ -32,7 +32,7 @@ using detail::short_number;
 StepIntegrals trapezoid(const ContactLoad& begin, const ContactLoad& end, double dt) {
   return {0.5 * (begin.power + end.power) * dt, 0.5 * (begin.slip_power + end.slip_power) * dt,
           0.5 * (begin.normal_force + end.normal_force) * dt, 0.5 * (begin.moment + end.moment) * dt,
-          std::max(begin.normal_force, end.normal_force)};
+          std::max(begin.normal_force, end.normal_force), 0.0, 0.5 * (begin.surface_power + end.surface_power) * dt};
 }
 
 class ThesisStepper final : public Stepper {

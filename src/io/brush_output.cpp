@@ -109,6 +109,7 @@ nlohmann::json brush_summary_json(const BrushResult& result, const Config& confi
                        {"width_m", s.contact_zone_width_m}};
   j["ledger_per_revolution"] = {{"hub_work_j", s.hub_work_j},
                                 {"friction_work_j", s.friction_work_j},
+                                {"surface_work_j", s.surface_work_j},
                                 {"damping_work_j", s.damping_work_j},
                                 {"impact_loss_j", s.impact_loss_j},
                                 {"energy_change_j", s.energy_change_j},

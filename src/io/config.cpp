@@ -205,6 +205,23 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
          p.depth_node = &n;
        }},
       {"surface.friction", [](Parsed& p, auto& k, auto& n) { p.config.contact.friction.mu = number_in(k, n, 0.0, 1e3, false, false); }},
+      {"surface.shape",
+       [](Parsed& p, auto& k, auto& n) {
+         const std::string v = one_of(k, n, {"plane", "cylinder", "casing"});
+         p.config.surface.shape = v == "cylinder" ? SurfaceShape::cylinder
+                                  : v == "casing" ? SurfaceShape::casing
+                                                  : SurfaceShape::plane;
+       }},
+      // A cylinder of 1e9 m is a plane to every digit the gap keeps; the rub and workpiece speeds
+      // share the hub's range.
+      {"surface.radius_m", [](Parsed& p, auto& k, auto& n) { p.config.surface.radius_m = number_in(k, n, 0.0, 1e9, true, false); }},
+      {"surface.speed_rpm", [](Parsed& p, auto& k, auto& n) { p.config.surface.speed_rpm = number_in(k, n, -1e6, 1e6, false, false); }},
+      {"surface.clearance_m", [](Parsed& p, auto& k, auto& n) { p.config.surface.clearance_m = number_in(k, n, -100.0, 100.0, false, false); }},
+      {"surface.lobes", [](Parsed& p, auto& k, auto& n) { p.config.surface.lobes = integer_in(k, n, 0, 1000); }},
+      {"surface.lobe_amplitude_m",
+       [](Parsed& p, auto& k, auto& n) { p.config.surface.lobe_amplitude_m = number_in(k, n, 0.0, 100.0, false, false); }},
+      {"surface.lobe_law",
+       [](Parsed& p, auto& k, auto& n) { p.config.surface.lobe_law = one_of(k, n, {"cosine", "benchmark"}); }},
       {"impact.restitution",
        [](Parsed& p, auto& k, auto& n) {
          if (n.is_string()) {
@@ -499,6 +516,53 @@ Config resolve(toml::table& root, const std::vector<std::pair<std::string, std::
   return validate(root);
 }
 
+// The [surface] keys each shape takes (surface.hpp): a key of another shape is an error, not ignored.
+void check_surface(const toml::table& root, const Config& c) {
+  const SurfaceParameters& sp = c.surface;
+  const std::string shape = surface_shape_name(sp.shape);
+  const auto node_of = [&](const char* key) { return root.at_path(key).node(); };
+  const auto refuse = [&](const char* key, const char* belongs) {
+    if (const toml::node* node = node_of(key))
+      fail(key, *node, std::string("applies to ") + belongs + "; this case's surface.shape is \"" + shape + "\"");
+  };
+  const double L = c.beam.length_m;
+  switch (sp.shape) {
+    case SurfaceShape::plane:
+      for (const char* key : {"surface.radius_m", "surface.speed_rpm"}) refuse(key, "surface.shape = \"cylinder\"");
+      for (const char* key : {"surface.clearance_m", "surface.lobes", "surface.lobe_amplitude_m", "surface.lobe_law"})
+        refuse(key, "surface.shape = \"casing\"");
+      break;
+    case SurfaceShape::cylinder:
+      for (const char* key : {"surface.clearance_m", "surface.lobes", "surface.lobe_amplitude_m", "surface.lobe_law"})
+        refuse(key, "surface.shape = \"casing\"");
+      if (!node_of("surface.radius_m"))
+        throw ConfigError("surface.shape = \"cylinder\" needs surface.radius_m, the workpiece's radius in m");
+      break;
+    case SurfaceShape::casing: {
+      refuse("surface.depth_fraction", "a plane or a cylinder; a casing is placed by surface.clearance_m");
+      for (const char* key : {"surface.radius_m", "surface.speed_rpm"}) refuse(key, "surface.shape = \"cylinder\"");
+      if (sp.lobes == 0)
+        for (const char* key : {"surface.lobe_amplitude_m", "surface.lobe_law"})
+          if (const toml::node* node = node_of(key))
+            fail(key, *node, "needs surface.lobes >= 1: without lobes the casing is a circle about the hub");
+      if (sp.lobe_law == "benchmark" && sp.lobes != 2)
+        fail("surface.lobe_law", *node_of("surface.lobe_law"),
+             "the benchmark's law has two lobes: it needs surface.lobes = 2, got " + std::to_string(sp.lobes));
+      // The casing must stay outside the hub: its smallest radius r_h + L + c0 − A (2A for the benchmark)
+      // above r_h.
+      const double deepest = sp.clearance_m - (sp.lobe_law == "benchmark" ? 2.0 : 1.0) * (sp.lobes ? sp.lobe_amplitude_m : 0.0);
+      if (!(deepest > -L)) {
+        const char* key = node_of("surface.lobe_amplitude_m") && sp.lobes ? "surface.lobe_amplitude_m" : "surface.clearance_m";
+        const std::string what = "the casing's smallest radius r_h + L + " + format_number(deepest) +
+                                 " m reaches the hub (beam.length_m = " + format_number(L) + ")";
+        if (const toml::node* node = node_of(key)) fail(key, *node, what);
+        throw ConfigError(std::string(key) + ": " + what);
+      }
+      break;
+    }
+  }
+}
+
 Config validate(toml::table& root) {
   Parsed p;
   std::map<std::string, const Setter*> by_key;
@@ -552,6 +616,7 @@ Config validate(toml::table& root) {
     if (node) fail("beam.diameter_m", *node, what);
     throw ConfigError("beam.diameter_m = " + format_number(c.beam.diameter_m) + ": " + what);
   }
+  check_surface(root, c);
   PassOptions& sim = c.simulation;
   if (p.revolutions_node && p.end_angle_node)
     fail("simulation.end_angle_deg", *p.end_angle_node,
@@ -574,6 +639,12 @@ Config validate(toml::table& root) {
   if (sim.steady_method == SteadyMethod::shooting && !sim.until_steady)
     fail("simulation.steady_method", *p.method_node,
          "shooting searches for the steady state: it needs simulation.until_steady = true");
+  if (c.brush && c.surface.shape == SurfaceShape::casing) {
+    const toml::node* node = root.at_path("surface.shape").node();
+    fail("surface.shape", *node,
+         "a brush works a plane or a cylinder in this version (its filaments' scatter moves their depth, which a "
+         "casing does not have)");
+  }
   if (c.brush) {
     // Every filament of a brush runs to its periodic steady state.
     if (p.until_steady_node && !sim.until_steady)
@@ -636,20 +707,31 @@ Config validate(toml::table& root) {
       throw ConfigError(what);
     }
   } else {
-    // A rigid start must reach the surface before the end angle.
+    // A rigid start must begin clear of the surface and reach it before the end angle. The key that
+    // places the surface: the depth (plane, cylinder) or the casing's clearance.
+    const bool casing = c.surface.shape == SurfaceShape::casing;
+    const char* place_key = casing ? "surface.clearance_m" : "surface.depth_fraction";
+    const toml::node* place_node = casing ? root.at_path(place_key).node() : p.depth_node;
+    const double place_value = casing ? c.surface.clearance_m : c.surface.depth_fraction;
+    const auto refuse_place = [&](const std::string& what) {
+      if (place_node) fail(place_key, *place_node, what);
+      throw ConfigError(std::string(place_key) + " = " + format_number(place_value) + ": " + what);
+    };
+    const double c0 = gap(beam, *surface, 0.0, Eigen::VectorXd::Zero(n));
+    if (c0 >= 0.0)
+      refuse_place("the undeformed tip starts inside the surface (gap " + computed_number(c0) +
+                   " m >= 0 at the start angle): a rigid start needs it clear (or start flexible, with an "
+                   "initial.modal_displacement that bends the tip clear)");
     const double theta_star = surface->first_contact_angle(beam.tip_radius(), beam.theta(0.0)) * 180.0 / M_PI;
-    if (std::isnan(theta_star)) {
-      const std::string what = "the undeformed tip never reaches the surface: the depth is below what the tip's "
-                               "position resolves in double precision";
-      if (p.depth_node) fail("surface.depth_fraction", *p.depth_node, what);
-      throw ConfigError("surface.depth_fraction = " + format_number(c.surface.depth_fraction) + ": " + what);
-    }
+    if (std::isnan(theta_star))
+      refuse_place(casing ? "the undeformed tip never reaches the casing: its clearance stays positive all round"
+                          : "the undeformed tip never reaches the surface: the depth is below what the tip's "
+                            "position resolves in double precision");
     if (!(theta_star < c.simulation.end_angle_deg)) {
-      const toml::node* node = p.end_angle_node ? p.end_angle_node : p.depth_node;
       const std::string what = "the rigid tip reaches the surface only at " + computed_number(theta_star) +
                                " deg, after the end angle " + format_number(c.simulation.end_angle_deg) + " deg";
-      if (node) fail(p.end_angle_node ? "simulation.end_angle_deg" : "surface.depth_fraction", *node, what);
-      throw ConfigError(what);
+      if (p.end_angle_node) fail("simulation.end_angle_deg", *p.end_angle_node, what);
+      refuse_place(what);
     }
   }
   return c;
@@ -714,7 +796,27 @@ nlohmann::json Config::to_json() const {
                                  : beam.damping_ratio.size() == 1 ? nlohmann::json(beam.damping_ratio[0])
                                                                   : nlohmann::json(beam.damping_ratio)}};
   j["hub"] = {{"radius_m", beam.hub_radius_m}, {"speed_rpm", beam.speed_rpm}};
-  j["surface"] = {{"depth_fraction", surface.depth_fraction}, {"friction", contact.friction.mu}};
+  // A plane's section is as it always was (older folders resume); other shapes add their keys.
+  switch (surface.shape) {
+    case SurfaceShape::plane:
+      j["surface"] = {{"depth_fraction", surface.depth_fraction}, {"friction", contact.friction.mu}};
+      break;
+    case SurfaceShape::cylinder:
+      j["surface"] = {{"shape", "cylinder"},
+                      {"depth_fraction", surface.depth_fraction},
+                      {"radius_m", surface.radius_m},
+                      {"speed_rpm", surface.speed_rpm},
+                      {"friction", contact.friction.mu}};
+      break;
+    case SurfaceShape::casing:
+      j["surface"] = {{"shape", "casing"}, {"clearance_m", surface.clearance_m}, {"lobes", surface.lobes},
+                      {"friction", contact.friction.mu}};
+      if (surface.lobes > 0) {
+        j["surface"]["lobe_amplitude_m"] = surface.lobe_amplitude_m;
+        j["surface"]["lobe_law"] = surface.lobe_law;
+      }
+      break;
+  }
   j["impact"] = {{"restitution_cap", impact.cap},
                  {"plastic_below_m_s", impact.plastic_below_m_s},
                  {"friction", impact.friction == ImpactFriction::coulomb ? "coulomb" : "none"}};

@@ -122,7 +122,7 @@ std::string force_bins_csv(const PassResult& result) {
 std::string revolutions_header(int n) {
   std::string h =
       "revolution,complete,t_start_s,t_end_s,impacts,contact_episodes,first_impact_deg,last_separation_deg,"
-      "normal_impulse_n_s,friction_work_j,damping_work_j,impact_loss_j,hub_work_j,energy_change_j,"
+      "normal_impulse_n_s,friction_work_j,surface_work_j,damping_work_j,impact_loss_j,hub_work_j,energy_change_j,"
       "mean_hub_torque_n_m,mean_hub_power_w,max_tip_deflection_ratio,section_distance,contact_time_s,"
       "peak_normal_force_n,ledger_residual_j";
   for (int i = 1; i <= n; ++i) h += ",q" + std::to_string(i) + "_m";
@@ -138,7 +138,7 @@ void append_revolution_line(std::string& out, const RevolutionRecord& r) {
     put(out, v);
   }
   out += ',' + std::to_string(r.impacts) + ',' + std::to_string(r.contact_episodes);
-  for (double v : {r.first_impact_deg, r.last_separation_deg, r.normal_impulse_n_s, r.friction_work_j, r.damping_work_j,
+  for (double v : {r.first_impact_deg, r.last_separation_deg, r.normal_impulse_n_s, r.friction_work_j, r.surface_work_j, r.damping_work_j,
                    r.impact_loss_j, r.hub_work_j, r.energy_change_j, r.mean_hub_torque_n_m, r.mean_hub_power_w,
                    r.max_tip_deflection_ratio, r.section_distance, r.contact_time_s, r.peak_normal_force_n,
                    r.ledger_residual_j}) {
@@ -177,6 +177,7 @@ nlohmann::json summary_json(const PassResult& result, const Config& config, cons
                        {"peak_tangential_force_n", s.binned_force.peak_tangential_force_n},
                        {"peak_normal_at_deg", number_or_null(s.binned_force.peak_normal_at_deg)}};
   j["friction_work_j"] = s.friction_work_j;
+  j["surface_work_j"] = s.surface_work_j;
   j["damping_work_j"] = s.damping_work_j;
   j["hub_work_j"] = s.hub_work_j;
   j["hub_impulsive_work_j"] = s.hub_impulsive_work_j;
@@ -188,6 +189,26 @@ nlohmann::json summary_json(const PassResult& result, const Config& config, cons
   j["mean_hub_torque_n_m"] = number_or_null(s.mean_hub_torque_n_m);
   j["mean_hub_power_w"] = number_or_null(s.mean_hub_power_w);
   j["revolutions"] = s.revolutions;
+  // The last complete revolution (the steady one of a run that reached its steady state): what a rub
+  // map or a brush reads per revolution.
+  if (s.last_revolution) {
+    const RevolutionRecord& r = *s.last_revolution;
+    j["last_revolution"] = {{"revolution", r.revolution},
+                            {"impacts", r.impacts},
+                            {"contact_episodes", r.contact_episodes},
+                            {"contact_time_s", r.contact_time_s},
+                            {"peak_normal_force_n", r.peak_normal_force_n},
+                            {"normal_impulse_n_s", r.normal_impulse_n_s},
+                            {"friction_work_j", r.friction_work_j},
+                            {"surface_work_j", r.surface_work_j},
+                            {"damping_work_j", r.damping_work_j},
+                            {"impact_loss_j", r.impact_loss_j},
+                            {"hub_work_j", r.hub_work_j},
+                            {"max_tip_deflection_ratio", r.max_tip_deflection_ratio},
+                            {"ledger_residual_j", r.ledger_residual_j}};
+  } else {
+    j["last_revolution"] = nullptr;
+  }
   if (s.steady_state.sought) {
     const SteadyState& st = s.steady_state;
     nlohmann::json mu = nlohmann::json::array();

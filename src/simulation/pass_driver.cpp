@@ -147,11 +147,11 @@ bool PassDriver::clear_for_the_rest() {
   if (!std::isfinite(delta)) return false;
   const double theta = hub.theta(state_.t), theta_end = hub.theta(t_end_);
   const double reach = system_.surface.max_gap_on_arc(system_.beam.tip_radius(), std::min(theta, theta_end),
-                                                      std::max(theta, theta_end));
-  if (!(reach + delta < 0.0)) return false;
+                                                      std::max(theta, theta_end), delta);
+  if (!(reach < 0.0)) return false;
   rec_.event(EventKind::clear, state_.t, state_.q,
-             "the tip stays within " + short_number(delta) + " m of its undeformed position (Jacobi integral) and the "
-             "undeformed tip stays " + short_number(-reach) + " m clear of the surface until the end angle: the pass "
+             "the tip stays within " + short_number(delta) + " m of its undeformed position (Jacobi integral) and so "
+             "at least " + short_number(-reach) + " m clear of the surface until the end angle: the pass "
              "ends here (simulation.end_when_clear)");
   rec_.ended_clear(state_.t);
   return true;

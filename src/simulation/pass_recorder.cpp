@@ -290,6 +290,7 @@ void PassRecorder::open_revolution(double t, const Eigen::VectorXd& q, const Eig
   mark_.contact_moment = contact_moment_;
   mark_.impulse_moment = impulse_moment_;
   mark_.friction = s.friction_work_j;
+  mark_.surface = s.surface_work_j;
   mark_.damping = s.damping_work_j;
   mark_.impact_loss = s.impact_loss_j;
   mark_.normal_impulse = s.normal_impulse_n_s + normal_time_integral_;
@@ -324,6 +325,7 @@ bool PassRecorder::close_revolution(double t, const Eigen::VectorXd& q, const Ei
   r.last_separation_deg = rev_last_separation_deg_;
   r.normal_impulse_n_s = s.normal_impulse_n_s + normal_time_integral_ - mark_.normal_impulse;
   r.friction_work_j = s.friction_work_j - mark_.friction;
+  r.surface_work_j = s.surface_work_j - mark_.surface;
   r.damping_work_j = s.damping_work_j - mark_.damping;
   r.impact_loss_j = s.impact_loss_j - mark_.impact_loss;
   r.hub_work_j = omega * (e.angular_momentum - mark_.momentum - (contact_moment_ - mark_.contact_moment) -
@@ -335,7 +337,8 @@ bool PassRecorder::close_revolution(double t, const Eigen::VectorXd& q, const Ei
   r.max_tip_deflection_ratio = rev_max_ratio_;
   r.contact_time_s = s.contact_time_s - mark_.contact_time;
   r.peak_normal_force_n = rev_peak_force_;
-  r.ledger_residual_j = r.hub_work_j + r.friction_work_j + r.damping_work_j + r.impact_loss_j - r.energy_change_j;
+  r.ledger_residual_j =
+      r.hub_work_j + r.friction_work_j + r.surface_work_j + r.damping_work_j + r.impact_loss_j - r.energy_change_j;
   r.q = q;
   r.qd = qd;
   bool steady = false;
@@ -429,6 +432,7 @@ void PassRecorder::accept(double t, const Eigen::VectorXd& q, const Eigen::Vecto
     s.contact_time_s += t - last_t_;
     normal_time_integral_ += in.normal_impulse;
     s.friction_work_j += in.friction_work;
+    s.surface_work_j += in.surface_work;
     work_ += in.work;
     contact_moment_ += in.contact_moment;
     note_force(std::max(load.normal_force, in.peak_normal_force));
@@ -588,6 +592,7 @@ void PassRecorder::finish(double t, const Eigen::VectorXd& q, const Eigen::Vecto
       close_revolution(t, q, qd, !result_.failure && t >= t_end * (1.0 - 1e-12));
     }
     s.revolutions = have_complete_ ? last_complete_.revolution : 0;
+    if (have_complete_) s.last_revolution = last_complete_;
     if (have_complete_) {
       s.mean_hub_torque_n_m = last_complete_.mean_hub_torque_n_m;
       s.mean_hub_power_w = last_complete_.mean_hub_power_w;

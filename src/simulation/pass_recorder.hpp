@@ -68,7 +68,7 @@ public:
 private:
   // Ledger totals and counters at a revolution's start, whose differences make its record.
   struct RevolutionMark {
-    double t = 0, energy = 0, momentum = 0, contact_moment = 0, impulse_moment = 0, friction = 0, damping = 0,
+    double t = 0, energy = 0, momentum = 0, contact_moment = 0, impulse_moment = 0, friction = 0, surface = 0, damping = 0,
            impact_loss = 0, normal_impulse = 0, contact_time = 0;
     int impacts = 0, episodes = 0;
     std::size_t history_rows = 0, events = 0;  // in-memory sizes (runs without a sink)

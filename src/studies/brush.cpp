@@ -138,6 +138,7 @@ FilamentSteadyState run_distinct(const Config& config, const std::vector<const B
     s.max_tip_deflection_ratio = std::max(s.max_tip_deflection_ratio, rec.max_tip_deflection_ratio);
     s.hub_work_j += weight * rec.hub_work_j;
     s.friction_work_j += weight * rec.friction_work_j;
+    s.surface_work_j += weight * rec.surface_work_j;
     s.damping_work_j += weight * rec.damping_work_j;
     s.impact_loss_j += weight * rec.impact_loss_j;
     s.energy_change_j += weight * rec.energy_change_j;
@@ -305,6 +306,7 @@ BrushResult run_brush(const Config& config, const BrushOptions& options) {
     s.mean_hub_torque_n_m += d.mean_hub_torque_n_m;
     s.hub_work_j += d.hub_work_j;
     s.friction_work_j += d.friction_work_j;
+    s.surface_work_j += d.surface_work_j;
     s.damping_work_j += d.damping_work_j;
     s.impact_loss_j += d.impact_loss_j;
     s.energy_change_j += d.energy_change_j;

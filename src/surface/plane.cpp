@@ -29,9 +29,9 @@ double Plane::first_contact_angle(double radius, double theta_from) const {
   return turns > 0.0 ? theta_star + 2.0 * M_PI * turns : theta_star;
 }
 
-double Plane::max_gap_on_arc(double radius, double theta_from, double theta_to) const {
-  if (std::floor(theta_to / (2.0 * M_PI)) * 2.0 * M_PI >= theta_from) return radius - distance_;
-  return radius * std::max(std::cos(theta_from), std::cos(theta_to)) - distance_;
+double Plane::max_gap_on_arc(double radius, double theta_from, double theta_to, double excursion) const {
+  if (std::floor(theta_to / (2.0 * M_PI)) * 2.0 * M_PI >= theta_from) return radius - distance_ + excursion;
+  return radius * std::max(std::cos(theta_from), std::cos(theta_to)) - distance_ + excursion;
 }
 
 nlohmann::json Plane::describe() const { return {{"shape", "plane"}, {"distance_m", distance_}}; }
