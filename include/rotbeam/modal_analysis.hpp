@@ -21,6 +21,10 @@ struct ModalAnalysis {
 /// Modes of `model` (its own ω).
 ModalAnalysis modal_analysis(const ForeshorteningBeam& model);
 
+/// The undamped natural frequencies [Hz] of any beam model's linearisation about q = 0 at its own hub
+/// speed (K φ = Ω² M0 φ, BeamModel::linearization), ascending; NaN where K makes a mode unstable.
+Eigen::VectorXd natural_frequencies_hz(const BeamModel& beam);
+
 /// The default speeds of `rotbeam modes` [rpm]: 0, the Table 5-2 speeds and the case's own, ascending.
 std::vector<double> default_mode_speeds_rpm(double case_speed_rpm);
 

@@ -147,6 +147,9 @@ struct PassSummary {
   // simulation.end_when_clear: the angle at which the pass ended because the tip could no longer
   // reach the surface before end_angle_deg; NaN when it ran to its end angle.
   double ended_clear_deg = NAN;
+  // The case's undamped natural frequencies at its hub speed, linearised about the straight
+  // filament (run_case fills them; empty otherwise) [Hz]: where a rub map's engine orders cross.
+  Eigen::VectorXd natural_frequencies_hz;
   // Runs over revolutions: the last complete revolution's record (none before the first completes).
   std::optional<RevolutionRecord> last_revolution;
   long steps = 0;

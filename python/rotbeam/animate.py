@@ -27,7 +27,7 @@ import sys  # noqa: E402
 from pathlib import Path  # noqa: E402
 
 from .plots import (DamagedFolder, case_title, put_in_place, read_csv, read_run,  # noqa: E402
-                    remove_stale_temporaries, surface_of, surface_x, temporary_beside)
+                    remove_stale_temporaries, surface_of, surface_x, draw_surface, temporary_beside)
 
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
@@ -209,7 +209,10 @@ def animate(folder, output=None, frames=None, frames_per_degree=None, window=Non
     c = summary["config"]
     surface = surface_of(summary)
     L = c["beam"]["length_m"]
-    depth = c["surface"]["depth_fraction"] * L
+    # How far the tip reaches into the surface: the zoom's scale.
+    s = c["surface"]
+    depth = (max(abs(s["clearance_m"]), 2 * s.get("lobe_amplitude_m", 0.0), 1e-4) if s.get("shape") == "casing"
+             else s["depth_fraction"] * L)
     zoom = (zoom_mm if zoom_mm is not None else max(2.5, 3e3 * depth)) * 1e-3
     if not zoom > 0:
         raise ValueError(f"zoom = {zoom_mm:g} mm: must be positive")
@@ -243,16 +246,20 @@ def animate(folder, output=None, frames=None, frames_per_degree=None, window=Non
     span_x = np.concatenate([px.ravel(), [-r_hub, r_hub]])
     span_y = np.concatenate([py.ravel(), [-r_hub, r_hub]])
     xmin, xmax = span_x.min(), span_x.max()
-    ymin = min(span_y.min(), -surface_x(surface, [0.0])[0] * 1e3)
+    casing = surface["shape"] == "casing"
+    ymin = span_y.min() if casing else min(span_y.min(), -surface_x(surface, [0.0])[0] * 1e3)
     ymax = span_y.max()
     pad = 0.06 * max(xmax - xmin, ymax - ymin)
     ax.set_xlim(xmin - pad, xmax + pad)
     ax.set_ylim(ymin - 2 * pad, ymax + pad)
     ax.set_aspect("equal")
-    surface_y = np.linspace(xmin - pad, xmax + pad, 200)
-    surface_h = -surface_x(surface, surface_y * 1e-3) * 1e3
-    ax.fill_between(surface_y, surface_h, ymin - 3 * pad, color="0.55", alpha=0.5, lw=0)
-    ax.plot(surface_y, surface_h, color="0.3", lw=1)
+    if casing:  # the casing all round the hub (the view shows the part the filament sweeps)
+        draw_surface(ax, surface, None, color="0.3", lw=1)
+    else:
+        surface_y = np.linspace(xmin - pad, xmax + pad, 200)
+        surface_h = -surface_x(surface, surface_y * 1e-3) * 1e3
+        ax.fill_between(surface_y, surface_h, ymin - 3 * pad, color="0.55", alpha=0.5, lw=0)
+        ax.plot(surface_y, surface_h, color="0.3", lw=1)
     ax.set_xlabel("Y (mm)")
     ax.set_ylabel("−X (mm)")
 
@@ -297,7 +304,8 @@ def animate(folder, output=None, frames=None, frames_per_degree=None, window=Non
     cursor = strip.axvline(lo, color="k", lw=1, animated=True)
     moving = [(ax, line), (ax, tip_dot), (ax, marks), (inset, in_surface), (inset, in_line), (inset, in_dot),
               (inset, in_marks), (text_ax, info), (strip, cursor)]
-    impact_points = np.array([(ey * 1e3, -surface_x(surface, [ey])[0] * 1e3) for _, _, ey in impacts]).reshape(-1, 2)
+    impact_points = np.array([(ey * 1e3, -surface_x(surface, [ey], [np.interp(et, history["t_s"], history["x_tip_m"])])[0]
+                               * 1e3) for et, _, ey in impacts]).reshape(-1, 2)
     impact_t = np.array([i[0] for i in impacts])
     inset_surface_y = np.linspace(-zmm, zmm, 50)
 
@@ -310,7 +318,8 @@ def animate(folder, output=None, frames=None, frames_per_degree=None, window=Non
         tip_dot.set_data([tx], [ty])
         in_line.set_data(px[k] - tx, py[k] - ty)
         in_dot.set_data([0.0], [0.0])
-        in_surface.set_data(inset_surface_y, -surface_x(surface, (inset_surface_y + tx) * 1e-3) * 1e3 - ty)
+        in_surface.set_data(inset_surface_y, -surface_x(surface, (inset_surface_y + tx) * 1e-3,
+                                                        np.full_like(inset_surface_y, -ty * 1e-3)) * 1e3 - ty)
         done = impact_t <= t[k]
         marks.set_data(impact_points[done, 0], impact_points[done, 1])
         in_marks.set_data(impact_points[done, 0] - tx, impact_points[done, 1] - ty)

@@ -54,6 +54,7 @@ except ImportError as missing:
 DEG = "°"
 
 from .brush_plots import BRUSH_MAP_PANELS, DamagedBrush, brush_figures, read_brush  # noqa: E402
+from .rub_map import is_rub_sweep, rub_map_figure  # noqa: E402
 
 
 def remove_stale_temporaries(path):
@@ -235,9 +236,25 @@ def read_run_table(path, required, words=None, text=(), may_be_empty=(), why_req
     return columns
 
 
+def surface_words(config):
+    """The surface of a configuration in a few words for a title: the depth (plane), the workpiece
+    (cylinder) or the casing's clearance and lobes."""
+    s = config["surface"]
+    shape = s.get("shape", "plane")
+    if shape == "casing":
+        lobes = s.get("lobes", 0)
+        return (f"casing clearance {1e3 * s['clearance_m']:g} mm"
+                + (f", {lobes} lobes of {1e3 * s.get('lobe_amplitude_m', 0):g} mm" if lobes else ", concentric"))
+    depth = f"depth {100 * s['depth_fraction']:g} %"
+    if shape == "cylinder":
+        spin = s.get("speed_rpm", 0)
+        return f"cylinder R {1e3 * s['radius_m']:g} mm{f' at {spin:g} rpm' if spin else ''}, {depth}"
+    return depth
+
+
 def case_title(summary):
     c = summary["config"]
-    return (f"{c['hub']['speed_rpm']:g} rpm, depth {100 * c['surface']['depth_fraction']:g} %, "
+    return (f"{c['hub']['speed_rpm']:g} rpm, {surface_words(c)}, "
             f"μ = {c['surface']['friction']:g}, {c['beam']['modes']} modes, {summary['scheme']} scheme")
 
 
@@ -265,8 +282,11 @@ def check_summary(summary, path):
     modes = _summary_entry(summary, path, "config", "beam", "modes")
     if isinstance(modes, bool) or not isinstance(modes, int) or not 1 <= modes <= 40:
         raise DamagedFolder(f"{path}: config.beam.modes = {json.dumps(modes)}: not a mode count (1..40)")
+    casing = isinstance(summary.get("config", {}).get("surface"), dict) and \
+        summary["config"]["surface"].get("shape") == "casing"
+    place = ("config", "surface", "clearance_m" if casing else "depth_fraction")
     for keys, positive in ((("config", "hub", "speed_rpm"), True), (("config", "beam", "length_m"), True),
-                           (("config", "hub", "radius_m"), False), (("config", "surface", "depth_fraction"), False),
+                           (("config", "hub", "radius_m"), False), (place, False),
                            (("config", "surface", "friction"), False)):
         v = _summary_entry(summary, path, *keys)
         if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or (positive and v <= 0):
@@ -318,16 +338,49 @@ def surface_of(summary):
             "distance_m": c["hub"]["radius_m"] + c["beam"]["length_m"] * (1 - c["surface"]["depth_fraction"])}
 
 
-def surface_x(surface, y):
-    """X (m) of the surface at the global Y values `y` (m), for drawing it in the (Y, −X) plane."""
+def casing_radius(surface, phi):
+    """ρ = r_h + L + c(φ) (m) of a casing (summary.json `surface`) at the polar angles φ (rad), by the
+    clearance law of docs/surfaces.md."""
+    phi = np.asarray(phi, dtype=float)
+    c0, lobes, a = surface["clearance_m"], surface.get("lobes", 0), surface.get("lobe_amplitude_m", 0.0)
+    c = np.full_like(phi, c0)
+    if lobes and surface.get("lobe_law", "cosine") == "benchmark":
+        m = np.mod(phi + np.pi / 2, np.pi)
+        c = c0 - 2 * a * np.exp(-((m / np.pi - 0.5) / 0.15) ** 2)
+    elif lobes:
+        c = c0 - a * np.cos(lobes * phi)
+    return surface["nominal_radius_m"] + c
+
+
+def surface_x(surface, y, x_hint=None):
+    """X (m) of the surface at the global Y values `y` (m), for drawing it in the (Y, −X) plane: a
+    cylinder's near side; for a casing, the side of x_hint's sign (X > 0 without it)."""
     y = np.asarray(y, dtype=float)
-    if surface["shape"] == "plane":
+    shape = surface["shape"]
+    if shape == "plane":
         return np.full_like(y, surface["distance_m"])
-    raise ValueError(f"cannot draw a surface of shape {surface['shape']!r}")
+    if shape == "cylinder":
+        r = surface["radius_m"]
+        with np.errstate(invalid="ignore"):
+            return surface["centre_x_m"] - np.sqrt(r * r - y * y)
+    if shape == "casing":
+        side = np.ones_like(y) if x_hint is None else np.where(np.asarray(x_hint, dtype=float) < 0, -1.0, 1.0)
+        x = side * surface["nominal_radius_m"]
+        with np.errstate(invalid="ignore"):
+            for _ in range(8):  # ρ(φ) with φ = atan2(Y, X): a fixed point, the lobes being shallow
+                rho = casing_radius(surface, np.arctan2(y, x))
+                x = side * np.sqrt(rho * rho - y * y)
+        return x
+    raise ValueError(f"cannot draw a surface of shape {shape!r}")
 
 
 def draw_surface(ax, surface, y_mm, **style):
-    """The surface as a curve −X against Y (mm) over the Y values `y_mm`."""
+    """The surface as a curve −X against Y (mm) over the Y values `y_mm` (a casing: whole, closed)."""
+    if surface["shape"] == "casing":
+        phi = np.linspace(-np.pi, np.pi, 1441)
+        rho = casing_radius(surface, phi)
+        ax.plot(rho * np.sin(phi) * 1e3, -rho * np.cos(phi) * 1e3, **style)
+        return
     y = np.linspace(np.nanmin(y_mm), np.nanmax(y_mm), 200)
     ax.plot(y, -surface_x(surface, y * 1e-3) * 1e3, **style)
 
@@ -576,7 +629,8 @@ def tip_path_figure(h, events, summary, title):
         draw_surface(ax, surface, Y, color="k", lw=0.5, label="surface", zorder=2)
         if imp:
             y_imp = events["y_tip_m"][imp]
-            ax.plot(y_imp * 1e3, -surface_x(surface, y_imp) * 1e3, "v", color="C3", ms=4, label="impacts",
+            x_imp = np.interp(events["t_s"][imp], h["t_s"], h["x_tip_m"])
+            ax.plot(y_imp * 1e3, -surface_x(surface, y_imp, x_imp) * 1e3, "v", color="C3", ms=4, label="impacts",
                     zorder=4)
         ax.set_xlabel("tip position Y (mm)")
         ax.set_ylabel("−X (mm)")
@@ -591,18 +645,39 @@ def tip_path_figure(h, events, summary, title):
     axes[0, 0].set_title("whole pass", fontsize=9)
     axes[0, 0].legend(fontsize=7, markerscale=2)
     near = h["gap_m"] > -2e-3
-    axes[0, 1].set_title("close-up: where the tip meets the surface", fontsize=9)
-    if near.any():
+    casing = surface["shape"] == "casing"
+    if casing:  # a casing all round: its radius and the tip's, unrolled against the polar angle
+        axes[0, 0].set_aspect("equal", adjustable="datalim")
+        ax = axes[0, 1]
+        phi = np.degrees(np.arctan2(h["y_tip_m"], h["x_tip_m"]))
+        rho = np.hypot(h["x_tip_m"], h["y_tip_m"])
+        grid = np.linspace(-180.0, 180.0, 1441)
+        ax.plot(grid, (casing_radius(surface, np.radians(grid)) - surface["nominal_radius_m"]) * 1e3, color="k",
+                lw=0.8, label="casing")
+        for ph, color in phase_colors.items():
+            sel = h["phase"] == ph
+            if sel.any():
+                ax.plot(phi[sel], (rho[sel] - surface["nominal_radius_m"]) * 1e3, ".", ms=1.5, color=color, label=ph)
+        ax.set_xlabel(f"polar angle of the tip φ ({DEG})")
+        ax.set_ylabel("radius − (r_h + L) (mm)")
+        ax.set_title("unrolled: the tip's radius and the casing's", fontsize=9)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7, markerscale=2)
+    else:
+        axes[0, 1].set_title("close-up: where the tip meets the surface", fontsize=9)
+    if casing:
+        pass
+    elif near.any():
         path(axes[0, 1])
         axes[0, 1].set_xlim(Y[near].min() - 1, Y[near].max() + 1)
-        x_near = surface_x(surface, h["y_tip_m"][near]) * 1e3
+        x_near = surface_x(surface, h["y_tip_m"][near], h["x_tip_m"][near]) * 1e3
         axes[0, 1].set_ylim(-x_near.max() - 0.05, -x_near.min() + 2.0)
     else:
         empty(axes[0, 1], "the tip never came within 2 mm of the surface")
     axes[1, 0].set_title("close-up: the first impact and the bounce back", fontsize=9)
     if imp:
         y0 = events["y_tip_m"][imp[0]] * 1e3
-        x0 = float(surface_x(surface, [y0 * 1e-3])[0]) * 1e3
+        x0 = float(surface_x(surface, [y0 * 1e-3], np.interp(events["t_s"][imp[:1]], h["t_s"], h["x_tip_m"]))[0]) * 1e3
         path(axes[1, 0])
         axes[1, 0].set_xlim(y0 - 0.5, y0 + 1.5)
         axes[1, 0].set_ylim(-x0 - 0.01, -x0 + 0.3)
@@ -612,7 +687,8 @@ def tip_path_figure(h, events, summary, title):
     axes[1, 1].axhline(0, color="k", lw=0.8)
     axes[1, 1].set_xlabel(f"hub angle θ ({DEG})")
     axes[1, 1].set_ylabel("gap C (mm)")
-    axes[1, 1].set_ylim(min(-5, np.nanmin(h["gap_m"]) * 1e3), 0.5)
+    low = np.nanmin(h["gap_m"]) * 1e3
+    axes[1, 1].set_ylim((1.1 * low, -0.1 * low) if casing else (min(-5, low), 0.5))
     axes[1, 1].grid(alpha=0.3)
     axes[1, 1].set_title("gap against the hub angle", fontsize=9)
     fig.suptitle(f"Tip path — {title}" + warning_line(summary), fontsize=10,
@@ -936,6 +1012,17 @@ def plot_brush_sweep(folder, out, table, keys, ok, cases):
     return written
 
 
+def _rub_note(table):
+    """The rub map's title line on the cases it leaves out: those without a steady revolution to show
+    (stopped on a failure, or without results), named with their status."""
+    left = [i for i, s in enumerate(table["status"]) if s not in ("done", "resumed")]
+    if not left:
+        return ""
+    named = ", ".join(f"{table['folder'][i]} ({table['status'][i]}"
+                      f"{': ' + table['message'][i].split(':')[0] if table['message'][i] else ''})" for i in left[:4])
+    return f"\n{len(left)} of {len(table['case'])} cases not drawn: {named}{', …' if len(left) > 4 else ''}"
+
+
 def plot_sweep(folder, out, cases=False):
     """The pictures of a sweep folder into out; every case with results is read and checked first
     (read_run), so a damaged one is named before the folder out is made and anything is written."""
@@ -959,6 +1046,8 @@ def plot_sweep(folder, out, cases=False):
     try:
         if drawn:
             figures.append(("sweep_normal_force_vs_y", sweep_force_figure(folder, table, keys, ok, drawn, runs)))
+        if is_rub_sweep(folder, table, keys, ok):
+            figures.append(("rub_map", rub_map_figure(folder, table, keys, ok, _rub_note(table))))
     except BaseException:
         for _, fig in figures:
             plt.close(fig)

@@ -188,6 +188,11 @@ nlohmann::json summary_json(const PassResult& result, const Config& config, cons
   j["energy_audit_residual"] = s.energy_audit_residual;
   j["mean_hub_torque_n_m"] = number_or_null(s.mean_hub_torque_n_m);
   j["mean_hub_power_w"] = number_or_null(s.mean_hub_power_w);
+  if (s.natural_frequencies_hz.size() > 0) {
+    nlohmann::json f = nlohmann::json::array();
+    for (double v : s.natural_frequencies_hz) f.push_back(number_or_null(v));
+    j["natural_frequencies_hz"] = f;
+  }
   j["revolutions"] = s.revolutions;
   // The last complete revolution (the steady one of a run that reached its steady state): what a rub
   // map or a brush reads per revolution.

@@ -22,6 +22,17 @@ ModalAnalysis modal_analysis(const ForeshorteningBeam& model) {
   return out;
 }
 
+Eigen::VectorXd natural_frequencies_hz(const BeamModel& beam) {
+  const Linearization l = beam.linearization();
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(l.stiffness, l.mass, Eigen::EigenvaluesOnly);
+  Eigen::VectorXd f(l.mass.rows());
+  for (Eigen::Index i = 0; i < f.size(); ++i) {
+    const double lambda = solver.eigenvalues()[i];
+    f[i] = lambda >= 0.0 ? std::sqrt(lambda) / (2.0 * M_PI) : std::numeric_limits<double>::quiet_NaN();
+  }
+  return f;
+}
+
 std::vector<double> default_mode_speeds_rpm(double case_speed_rpm) {
   std::vector<double> speeds = {0.0, 550.0, 1000.0, 2000.0, 3000.0, case_speed_rpm};
   std::sort(speeds.begin(), speeds.end());

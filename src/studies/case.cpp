@@ -1,4 +1,5 @@
 #include "rotbeam/case.hpp"
+#include "rotbeam/modal_analysis.hpp"
 #include "rotbeam/steady_state.hpp"
 
 #include <algorithm>
@@ -35,7 +36,9 @@ Case build_case(const Config& config) {
 }
 
 PassResult run_case(const Case& c, const PassControl& control) {
-  return run_to_steady_state(c.system(), c.initial, c.options, control);
+  PassResult r = run_to_steady_state(c.system(), c.initial, c.options, control);
+  r.summary.natural_frequencies_hz = natural_frequencies_hz(*c.beam);
+  return r;
 }
 
 FirstImpactResult run_first_impact(const Case& c, const PassControl& control) {

@@ -82,6 +82,16 @@ const Metric kMetrics[] = {{"impacts", "/impacts"},
                            {"friction_work_j", "/friction_work_j"},
                            {"max_tip_deflection_ratio", "/max_tip_deflection_ratio"},
                            {"energy_audit_residual", "/energy_audit_residual"},
+                           // The last complete revolution of a run over revolutions (the steady one):
+                           // what a rub map reads (docs/surfaces.md).
+                           {"last_revolution_impacts", "/last_revolution/impacts"},
+                           {"last_revolution_peak_normal_force_n", "/last_revolution/peak_normal_force_n"},
+                           {"last_revolution_normal_impulse_n_s", "/last_revolution/normal_impulse_n_s"},
+                           {"last_revolution_friction_work_j", "/last_revolution/friction_work_j"},
+                           {"last_revolution_max_tip_deflection_ratio", "/last_revolution/max_tip_deflection_ratio"},
+                           {"f1_hz", "/natural_frequencies_hz/0"},
+                           {"f2_hz", "/natural_frequencies_hz/1"},
+                           {"f3_hz", "/natural_frequencies_hz/2"},
                            {"steps", "/steps"},
                            {"rhs_evaluations", "/rhs_evaluations"},
                            {"wall_time_s", "/wall_time_s"}};

@@ -1,0 +1,154 @@
+"""The rub map of a sweep over hub speed with a casing (docs/surfaces.md): the last complete
+revolution's response of every case (peak tip deflection, peak contact force, impulse, friction
+work, impacts) against speed, under the Campbell diagram whose engine-order crossings
+k·Ω = ω_j(Ω) mark where a casing of k lobes excites a mode. Read from sweep.csv alone: the
+natural frequencies are its f1_hz … f3_hz columns, each case's own."""
+
+import json
+from pathlib import Path
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+SPEED = "hub.speed_rpm"
+
+# (column, scale, axis label) of the response panels.
+RESPONSE_PANELS = [
+    ("last_revolution_max_tip_deflection_ratio", 1.0, "peak |y_t|/L"),
+    ("last_revolution_peak_normal_force_n", 1.0, "peak contact force (N)"),
+    ("last_revolution_normal_impulse_n_s", 1e3, "normal impulse per revolution (mN·s)"),
+    ("last_revolution_friction_work_j", -1e3, "friction dissipation per revolution (mJ)"),
+    ("last_revolution_impacts", 1.0, "impacts per revolution"),
+]
+
+
+def casing_of(folder, table, ok):
+    """The surface (summary.json `surface`) of the first case with results when it is a casing, else None."""
+    for f, good in zip(table["folder"], ok):
+        if good:
+            try:
+                surface = json.loads((Path(folder) / f / "summary.json").read_text()).get("surface", {})
+            except (OSError, ValueError):
+                return None
+            return surface if surface.get("shape") == "casing" else None
+    return None
+
+
+def is_rub_sweep(folder, table, keys, ok):
+    """True for a sweep over hub.speed_rpm whose cases rub a casing and that has the rub columns."""
+    return (SPEED in keys and "last_revolution_peak_normal_force_n" in table and "f1_hz" in table
+            and casing_of(folder, table, ok) is not None)
+
+
+MAX_MULTIPLES = 6  # the engine orders drawn: k, 2k, …, 6k for a casing of k lobes
+
+
+def engine_orders(lobes):
+    """The orders k·m (m = 1 … MAX_MULTIPLES) of a casing with k lobes: the harmonics its lobes put on
+    a filament turning past them (a cosine law's own is k; contact makes the multiples); none for a
+    concentric casing (nothing turns in the hub frame)."""
+    return [lobes * m for m in range(1, MAX_MULTIPLES + 1)] if lobes > 0 else []
+
+
+def crossings(speeds_rpm, frequencies_hz, order):
+    """Speeds [rpm] where order·Ω/60 = f(Ω), linearly interpolated between the sampled speeds."""
+    s = np.asarray(speeds_rpm, dtype=float)
+    d = np.asarray(frequencies_hz, dtype=float) - order * s / 60.0
+    out = []
+    for i in range(len(s) - 1):
+        if np.isfinite(d[i]) and np.isfinite(d[i + 1]) and d[i] * d[i + 1] <= 0 and d[i] != d[i + 1]:
+            out.append(s[i] + (s[i + 1] - s[i]) * d[i] / (d[i] - d[i + 1]))
+    return out
+
+
+def rub_map_figure(folder, table, keys, ok, note=""):
+    """rub_map.png: the Campbell diagram with its engine-order crossings, and the response panels,
+    against hub speed; a line per value of the other varied keys."""
+    surface = casing_of(folder, table, ok)
+    lobes = int(surface.get("lobes", 0))
+    law = surface.get("lobe_law", "cosine") if lobes else "concentric"
+    drawn = ok & np.isin(table["status"], ["done", "resumed"])
+    rest = [k for k in keys if k != SPEED]
+    speed = table[SPEED].astype(float)
+    groups = list(dict.fromkeys(tuple(table[k][i] for k in rest) for i in range(len(speed)) if drawn[i]))
+    fig = plt.figure(figsize=(13, 11))
+    grid = fig.add_gridspec(4, 2, height_ratios=[1.4, 1, 1, 1])
+    campbell = fig.add_subplot(grid[0, :])
+    panels = [fig.add_subplot(grid[1 + i // 2, i % 2], sharex=campbell) for i in range(5)]
+    legend_ax = fig.add_subplot(grid[3, 1])
+    legend_ax.axis("off")
+
+    # The Campbell diagram from the cases' own frequencies (every case: they do not depend on the run).
+    order = np.argsort(speed)
+    s_sorted = speed[order]
+    orders = engine_orders(lobes)
+    # Up to the highest order's frequency at the top speed (or the first mode's, without orders): the
+    # modes above it are not excited over these speeds and are left out, so the crossings stay legible.
+    reach = max(orders) * float(np.nanmax(s_sorted)) / 60.0 if orders else 0.0
+    modes = []
+    top = 0.0
+    for c in ("f1_hz", "f2_hz", "f3_hz"):
+        if c not in table:
+            continue
+        f = table[c].astype(float)[order]
+        if not np.isfinite(f).any() or (modes and np.nanmin(f) > reach):
+            continue
+        modes.append(c)
+        campbell.plot(s_sorted, f, color=f"C{len(modes) - 1}", lw=2, label=f"mode {len(modes)}")
+        top = max(top, float(np.nanmax(f)))
+    top = max(top, min(reach, 1.5 * top)) * 1.1 if top > 0 else 1.0
+    crossing_speeds = []
+    for o in orders:
+        campbell.plot(s_sorted, o * s_sorted / 60.0, "k--", lw=0.7, alpha=0.6)
+        x_end = min(s_sorted[-1], 0.97 * top * 60.0 / o)
+        campbell.annotate(f"{o}×", (x_end, o * x_end / 60.0), fontsize=8, ha="right", va="bottom")
+        for j, c in enumerate(modes):
+            for x in crossings(s_sorted, table[c].astype(float)[order], o):
+                if not o * x / 60.0 < top:
+                    continue
+                crossing_speeds.append((x, j, o))
+                campbell.plot([x], [o * x / 60.0], "o", color=f"C{j}", ms=6, mfc="none", mew=1.5)
+    campbell.set_ylim(0, top)
+    campbell.set_ylabel("frequency (Hz)")
+    campbell.set_xlabel(f"{SPEED} (rpm)")
+    campbell.grid(alpha=0.3)
+    why = (f"engine orders k·Ω of a casing of {lobes} lobes ({law}) dashed, crossings circled" if orders
+           else "a concentric casing excites no engine order" if lobes == 0
+           else "no engine order of this casing reaches the modes over these speeds")
+    campbell.set_title(f"Campbell diagram: in-plane modes at each case's speed; {why}", fontsize=9, pad=4)
+    campbell.legend(fontsize=8, loc="upper left")
+
+    styles = ([{"color": f"C{i % 10}", "marker": "o", "linestyle": "-"} for i in range(len(groups))]
+              if rest else [{"color": "C0", "marker": "o", "linestyle": "-"}])
+    revolutions = drawn & np.isfinite(table["last_revolution_peak_normal_force_n"].astype(float))
+    for ax, (column, scale, label) in zip(panels, RESPONSE_PANELS):
+        for g, style in zip(groups, styles):
+            sel = revolutions.copy()
+            for k, v in zip(rest, g):
+                sel &= table[k] == v
+            o = np.argsort(speed[sel])
+            name = ", ".join(f"{k} = {v}" for k, v in zip(rest, g)) or None
+            ax.plot(speed[sel][o], table[column][sel][o].astype(float) * scale, ms=3, lw=1, label=name, **style)
+        for x, j, _ in crossing_speeds:
+            ax.axvline(x, color=f"C{j}", lw=0.8, ls=":", alpha=0.8)
+        ax.set_ylabel(label)
+        ax.set_xlabel(f"{SPEED} (rpm)")
+        ax.grid(alpha=0.3)
+        if not revolutions.any():
+            ax.text(0.5, 0.5, "no case ran over whole revolutions\n(set simulation.revolutions or until_steady)",
+                    transform=ax.transAxes, ha="center", va="center", fontsize=8)
+    handles, labels = panels[0].get_legend_handles_labels()
+    if rest and handles:
+        legend_ax.legend(handles, labels, loc="center", fontsize=8, title=", ".join(rest), title_fontsize=8)
+    elif crossing_speeds:
+        legend_ax.text(0.0, 0.5, "dotted: the engine-order crossings\n(colour: the mode crossed)\n" +
+                       "\n".join(f"{o}× mode {j + 1} at {x:.0f} rpm" for x, j, o in crossing_speeds[:8]) +
+                       ("\n…" if len(crossing_speeds) > 8 else ""),
+                       transform=legend_ax.transAxes, va="center", fontsize=8)
+    n = len(table["case"])
+    fig.suptitle(f"Rub map: {int(drawn.sum())} of {n} cases drawn, the last complete revolution of each "
+                 f"(casing: clearance {1e3 * surface.get('clearance_m', 0):g} mm, {lobes} lobes"
+                 f"{', amplitude %g mm' % (1e3 * surface.get('lobe_amplitude_m', 0)) if lobes else ''}){note}",
+                 fontsize=10)
+    fig.tight_layout()
+    return fig
