@@ -6,6 +6,8 @@
 #include "rotbeam/kinematics.hpp"
 #include "rotbeam/rk5.hpp"
 #include "rotbeam/plane.hpp"
+#include "rotbeam/casing.hpp"
+#include "rotbeam/cylinder.hpp"
 
 #include <atomic>
 #include <cstdlib>
@@ -51,6 +53,36 @@ TEST(NoAllocation, RightHandSideKinematicsImpactAndRk5Step) {
     counting = false;
     EXPECT_EQ(allocations.load(), 0) << "n = " << n;
     EXPECT_TRUE(a.allFinite());
+  }
+}
+
+TEST(NoAllocation, CurvedSurfacesContactGeometry) {
+  // A spinning cylinder's and a lobed casing's contact geometry (gap field, chain rule) and an impact
+  // on each: nothing on the heap either.
+  for (int n : {3, 12}) {
+    BeamParameters p;
+    p.modes = n;
+    const ForeshorteningBeam model = make_beam(p);
+    const Cylinder cylinder(model.tip_radius() - 0.02 * model.length, 0.05, 100.0);
+    const Casing casing(model.tip_radius(), 1e-4, 3, 5e-4, LobeLaw::cosine);
+    const Casing benchmark(model.tip_radius(), 1e-4, 2, 1e-4, LobeLaw::benchmark);
+    ForeshorteningWorkspace ws(n);
+    TipKinematics tip(n);
+    Eigen::VectorXd q = Eigen::VectorXd::Constant(n, 1e-3), v = Eigen::VectorXd::Constant(n, 0.3);
+    const double t = model.time_at(-0.2);
+    for (const Surface* s : {static_cast<const Surface*>(&cylinder), static_cast<const Surface*>(&casing),
+                             static_cast<const Surface*>(&benchmark)}) {
+      tip_kinematics(model, *s, t, q, v, tip);  // warm-up
+      Eigen::VectorXd qd = v;
+      allocations = 0;
+      counting = true;
+      tip_kinematics(model, *s, t, q, qd, tip);
+      if (tip.gap_rate <= 0) qd = -qd;
+      tip_kinematics(model, *s, t, q, qd, tip);
+      if (tip.gap_rate > 0) apply_impact(model, *s, ImpactLaw{}, t, q, qd, ws, tip);
+      counting = false;
+      EXPECT_EQ(allocations.load(), 0) << "n = " << n << " " << s->describe().dump();
+    }
   }
 }
 

@@ -28,8 +28,8 @@ void print_summary(const Config& config, const BrushResult& r, const std::string
   const BrushSummary& s = r.summary;
   const BrushSettings& b = *config.brush;
   std::cout << "Brush: " << s.filaments << " filaments (" << b.filaments << " around × " << b.rows << " rows, "
-            << s.distinct_filaments << " distinct), " << number_text(config.beam.speed_rpm) << " rpm, depth "
-            << percent_text(config.surface.depth_fraction) << " %, μ = " << config.contact.friction.mu << ", "
+            << s.distinct_filaments << " distinct), " << number_text(config.beam.speed_rpm) << " rpm, "
+            << surface_text(config) << ", μ = " << config.contact.friction.mu << ", "
             << config.beam.modes << " modes\n";
   std::cout << "  filaments             " << s.steady << " steady, " << s.not_steady << " not steady, " << s.failed
             << " failed, " << s.filaments - s.reaching << " clear of the surface\n";

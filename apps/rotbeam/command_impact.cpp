@@ -57,8 +57,8 @@ int run_impact(const ImpactOptions& o) {
       start += (i ? ", " : "") + fixed(config.initial.modal_velocity[i], 3);
     start += "] m/s";
   }
-  std::cout << "First impact: " << given_text(config.beam.speed_rpm) << " rpm, depth "
-            << percent_text(config.surface.depth_fraction) << " %, " << config.beam.modes << " modes, "
+  std::cout << "First impact: " << given_text(config.beam.speed_rpm) << " rpm, "
+            << surface_text(config) << ", " << config.beam.modes << " modes, "
             << start << "\n"
             << "  time             t       = " << fixed(r.t, 7) << " s\n"
             << "  hub angle        θ       = " << fixed(theta_deg, 4) << " deg\n"

@@ -24,8 +24,8 @@ struct RunOptions {
 
 void print_summary(const Config& config, const PassResult& r, const std::string& dir) {
   const PassSummary& s = r.summary;
-  std::cout << "Pass: " << given_text(config.beam.speed_rpm) << " rpm, depth "
-            << percent_text(config.surface.depth_fraction) << " %, μ = " << given_text(config.contact.friction.mu) << ", "
+  std::cout << "Pass: " << given_text(config.beam.speed_rpm) << " rpm, "
+            << surface_text(config) << ", μ = " << given_text(config.contact.friction.mu) << ", "
             << config.beam.modes << " modes, " << config.initial.start << " start, " << scheme_name(s.scheme)
             << " scheme\n";
   // A pass that stopped says so first: `run > summary.txt` kept a complete-looking summary of a

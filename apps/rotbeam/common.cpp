@@ -225,6 +225,22 @@ CLI::Validator non_empty_path() {
 
 std::string path_text(const std::string& path) { return path.empty() ? "\"\"" : printable(path); }
 
+std::string surface_text(const Config& config) {
+  const SurfaceParameters& s = config.surface;
+  const std::string depth = "depth " + percent_text(s.depth_fraction) + " %";
+  switch (s.shape) {
+    case SurfaceShape::plane: return depth;
+    case SurfaceShape::cylinder:
+      return "cylinder R " + given_text(s.radius_m * 1e3) + " mm" +
+             (s.speed_rpm != 0.0 ? " at " + given_text(s.speed_rpm) + " rpm" : std::string()) + ", " + depth;
+    case SurfaceShape::casing:
+      return "casing clearance " + given_text(s.clearance_m * 1e3) + " mm, " +
+             (s.lobes > 0 ? std::to_string(s.lobes) + " " + s.lobe_law + " lobes of " + given_text(s.lobe_amplitude_m * 1e3) + " mm"
+                          : std::string("concentric"));
+  }
+  return depth;
+}
+
 std::string percent_text(double fraction) {
   const double percent = 100.0 * fraction;
   const std::string two = fixed(percent, 2);
