@@ -15,7 +15,7 @@ SPEED = "hub.speed_rpm"
 # (column, scale, axis label) of the response panels.
 RESPONSE_PANELS = [
     ("last_revolution_max_tip_deflection_ratio", 1.0, "peak |y_t|/L"),
-    ("last_revolution_peak_normal_force_n", 1.0, "peak contact force (N)"),
+    ("last_revolution_peak_normal_force_n", 1.0, "peak force in sustained\ncontact (N; 0: impacts only)"),
     ("last_revolution_normal_impulse_n_s", 1e3, "normal impulse per revolution (mN·s)"),
     ("last_revolution_friction_work_j", -1e3, "friction dissipation per revolution (mJ)"),
     ("last_revolution_impacts", 1.0, "impacts per revolution"),
@@ -121,6 +121,11 @@ def rub_map_figure(folder, table, keys, ok, note=""):
     styles = ([{"color": f"C{i % 10}", "marker": "o", "linestyle": "-"} for i in range(len(groups))]
               if rest else [{"color": "C0", "marker": "o", "linestyle": "-"}])
     revolutions = drawn & np.isfinite(table["last_revolution_peak_normal_force_n"].astype(float))
+    # Filled markers: the case reached its periodic steady state; hollow: its last revolution is one of
+    # a motion that did not settle (or the run did not look for a steady state).
+    after = table["steady_after_revolutions"].astype(float) if "steady_after_revolutions" in table \
+        else np.zeros(len(speed))
+    steady = np.nan_to_num(after) > 0
     for ax, (column, scale, label) in zip(panels, RESPONSE_PANELS):
         for g, style in zip(groups, styles):
             sel = revolutions.copy()
@@ -128,7 +133,10 @@ def rub_map_figure(folder, table, keys, ok, note=""):
                 sel &= table[k] == v
             o = np.argsort(speed[sel])
             name = ", ".join(f"{k} = {v}" for k, v in zip(rest, g)) or None
-            ax.plot(speed[sel][o], table[column][sel][o].astype(float) * scale, ms=3, lw=1, label=name, **style)
+            xs, ys, st = speed[sel][o], table[column][sel][o].astype(float) * scale, steady[sel][o]
+            ax.plot(xs, ys, lw=1, label=name, **dict(style, marker=None))
+            ax.plot(xs[~st], ys[~st], ls="none", marker=style["marker"], ms=4, mfc="white", color=style["color"])
+            ax.plot(xs[st], ys[st], ls="none", marker=style["marker"], ms=4, color=style["color"])
         for x, j, _ in crossing_speeds:
             ax.axvline(x, color=f"C{j}", lw=0.8, ls=":", alpha=0.8)
         ax.set_ylabel(label)
@@ -146,6 +154,9 @@ def rub_map_figure(folder, table, keys, ok, note=""):
                        ("\n…" if len(crossing_speeds) > 8 else ""),
                        transform=legend_ax.transAxes, va="center", fontsize=8)
     n = len(table["case"])
+    settled = int((steady & revolutions).sum())
+    note = (f"\nfilled markers: the {settled} of {int(revolutions.sum())} cases that reached their periodic steady "
+            "state; hollow: the last revolution of a motion that did not settle" + note)
     fig.suptitle(f"Rub map: {int(drawn.sum())} of {n} cases drawn, the last complete revolution of each "
                  f"(casing: clearance {1e3 * surface.get('clearance_m', 0):g} mm, {lobes} lobes"
                  f"{', amplitude %g mm' % (1e3 * surface.get('lobe_amplitude_m', 0)) if lobes else ''}){note}",

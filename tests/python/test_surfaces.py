@@ -76,7 +76,7 @@ def test_the_rub_map_marks_where_engine_orders_cross_the_modes(folders):
     campbell = fig.axes[0]
     assert any(line.get_marker() == "o" and np.isclose(line.get_xdata()[0], x) for line in campbell.lines)
     for ax in fig.axes[1:6]:  # the response panels: one line of data, every crossing dotted
-        assert any(len(line.get_xdata()) == len(speeds) for line in ax.lines)
+        assert any(len(line.get_xdata()) == len(speeds) and line.get_linestyle() == "-" for line in ax.lines)
         assert ax.get_xlabel() and ax.get_ylabel()
     plt.close(fig)
     cli("plot", str(folders["sweep"]), "-o", str(folders["sweep"] / "pictures"))
