@@ -389,6 +389,10 @@ TEST(SurfaceConfig, AKeyOfAnotherShapeOrAnImpossiblePlaceIsNamed) {
       {{"surface.shape=casing", "surface.clearance_m=1e-4", "surface.lobes=4", "surface.lobe_amplitude_m=1e-3"},
        "the undeformed tip starts inside the surface"},
       {{"surface.shape=ellipse"}, "surface.shape = \"ellipse\": must be one of \"plane\", \"cylinder\", \"casing\""},
+      {{"surface.shape=cylinder", "surface.radius_m=5e-4", "initial.modal_velocity=[0.1,0,0,0,0]"},
+       "surface.radius_m = 5e-04: the workpiece is 0.001 m across, within the tip's reach"},
+      {{"surface.shape=casing", "surface.clearance_m=-1e-4", "initial.modal_velocity=[0.1,0,0,0,0]"},
+       "surface.clearance_m = -1e-04: the initial shape already reaches the surface"},
       {{"surface.shape=casing", "surface.clearance_m=-1e-4", "initial.modal_displacement=[0.01,0,0,0,0]", "brush.filaments=3"},
        "surface.shape = \"casing\": a brush works a plane or a cylinder"},
   };
@@ -408,10 +412,13 @@ TEST(SurfaceWork, ASpinningWorkpiecesFrictionWorkClosesTheLedger) {
   // A cylinder spinning against the filament drives its tip through friction: the surface's work
   // enters the ledger (hub + friction + surface + damping + impacts = ΔE, per revolution) and changes
   // sign with the sense of spin. Without it the ledger would miss it by its size.
-  for (double rpm : {-2000.0, 2000.0}) {
+  // With Coulomb impacts the impulse's part P⃗·V_s is the surface's work too: the impacts' loss stays ≤ 0.
+  for (const auto& [rpm, impact] : std::vector<std::pair<double, std::string>>{
+           {-2000.0, "none"}, {2000.0, "none"}, {-3000.0, "coulomb"}, {3000.0, "coulomb"}}) {
     const Config c = load_config_string(
         "", {"surface.shape=cylinder", "surface.radius_m=0.03", "surface.speed_rpm=" + std::to_string(rpm),
-             "surface.friction=0.2", "beam.damping_ratio=0.05", "simulation.revolutions=3", "hub.speed_rpm=1000"});
+             "surface.friction=0.2", "beam.damping_ratio=0.05", "simulation.revolutions=3", "hub.speed_rpm=1000",
+             "impact.friction=" + impact});
     const PassResult r = run_case(build_case(c));
     ASSERT_FALSE(r.failure) << r.failure->message;
     const PassSummary& s = r.summary;
@@ -422,6 +429,8 @@ TEST(SurfaceWork, ASpinningWorkpiecesFrictionWorkClosesTheLedger) {
     EXPECT_LT(std::abs(rev.ledger_residual_j), 1e-7 * scale) << rpm;
     EXPECT_GT(std::abs(rev.ledger_residual_j - rev.surface_work_j), 1e-3 * scale) << "the surface's work is the ledger's";
     EXPECT_LE(s.friction_work_j, 0.0) << "friction dissipates: the slip is relative to the surface";
+    EXPECT_LE(s.impact_loss_j, 1e-15) << rpm << " " << impact << ": impacts dissipate";
+    for (const RevolutionRecord& each : r.revolutions) EXPECT_LE(each.impact_loss_j, 1e-15);
   }
 }
 

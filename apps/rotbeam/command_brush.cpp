@@ -47,6 +47,7 @@ void print_summary(const Config& config, const BrushResult& r, const std::string
   else
     std::cout << "  contact zone          none: no filament touched the surface\n";
   std::cout << "  ledger per revolution hub " << s.hub_work_j * 1e3 << " mJ, friction " << s.friction_work_j * 1e3
+            << (s.surface_work_j != 0.0 ? " mJ, surface " + number_text(s.surface_work_j * 1e3) : std::string())
             << " mJ, damping " << s.damping_work_j * 1e3 << " mJ, impacts " << s.impact_loss_j * 1e3
             << " mJ, residual " << s.ledger_residual_j << " J\n";
   std::cout << "  dimensionless         p = " << s.depth_ratio << ", Ω/ω₁ = " << s.speed_ratio

@@ -231,11 +231,12 @@ std::string surface_text(const Config& config) {
   switch (s.shape) {
     case SurfaceShape::plane: return depth;
     case SurfaceShape::cylinder:
-      return "cylinder R " + given_text(s.radius_m * 1e3) + " mm" +
+      return "cylinder R " + (s.radius_m < 10.0 ? given_text(s.radius_m * 1e3) + " mm" : given_text(s.radius_m) + " m") +
              (s.speed_rpm != 0.0 ? " at " + given_text(s.speed_rpm) + " rpm" : std::string()) + ", " + depth;
     case SurfaceShape::casing:
       return "casing clearance " + given_text(s.clearance_m * 1e3) + " mm, " +
-             (s.lobes > 0 ? std::to_string(s.lobes) + " " + s.lobe_law + " lobes of " + given_text(s.lobe_amplitude_m * 1e3) + " mm"
+             (s.lobes > 0 ? std::to_string(s.lobes) + " " + s.lobe_law + (s.lobes == 1 ? " lobe of " : " lobes of ") +
+                                given_text(s.lobe_amplitude_m * 1e3) + " mm"
                           : std::string("concentric"));
   }
   return depth;

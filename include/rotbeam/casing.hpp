@@ -8,8 +8,8 @@
 // benchmark law is the two-lobe distortion of the NASA Rotor 37 rub case (Piollet, Nyssen & Batailly
 // 2019): with A = c0 = g0 it is their g(θ) = g0(1 − 2exp(−((mod(θ, π)/π − 0.5)/0.15)²)) with their
 // θ = φ + 90°, so that the lobes sit at φ = 0° and 180° (0° is the deepest point of every surface, and
-// the filament starts at −90°, between the lobes). Its derivative jumps by
-// 4·(0.5/0.15)·e^(−(0.5/0.15)²)·2A/(0.15π) ≈ 4e-4·A per radian at φ = 90° + m·180°, where mod wraps: the
+// the filament starts at −90°, between the lobes). Its derivative jumps from +4.2e-4·A to −4.2e-4·A
+// per radian (each side 2A·2u·e^(−u²)/(0.15π), u = 0.5/0.15) at φ = 90° + m·180°, where mod wraps: the
 // law is only C⁰ there (the benchmark's own property).
 //
 // The gap is g = (ρ − R(φ)) w, w = ρ/√(ρ² + R'(φ)²), so that |∇g| = 1 on the casing (the multiplier is

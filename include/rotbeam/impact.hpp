@@ -46,7 +46,8 @@ struct ImpactResult {
   double tangential_impulse = 0;       // P_t along the tangent (Coulomb impacts; |P_t| ≤ μ|P|) [N s]
   double impulse_x = 0, impulse_y = 0; // the impulse on the tip, global frame [N s]
   bool jammed = false;                 // a frictional impact whose normal approach never ends (impact Painlevé)
-  double contact_work = 0;             // work of the contact impulse on the tip, −(the energy the impact dissipates) [J]
+  double contact_work = 0;             // work of the contact impulse on the tip [J]: surface_work − (the energy the impact dissipates)
+  double surface_work = 0;             // its part P⃗·V_s that a moving surface does (0 at rest, and without friction) [J]
 };
 
 /// Whether the tip leaves the surface after the impact. The law makes Ċ⁺ = −e Ċ⁻ exactly, so it

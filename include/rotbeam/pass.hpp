@@ -131,15 +131,15 @@ struct PassSummary {
   double mean_normal_force_n = 0;
   double normal_impulse_n_s = 0;
   double friction_work_j = 0;      // ∫F_t V_t dt ≤ 0, V_t the slip relative to the surface [J]
-  // ∫F_t (V_s·t) dt: a moving surface's (a spinning workpiece's) work on the tip through friction in
-  // sustained contact; 0 for a surface at rest. At impacts its part is in impact_loss_j [J].
+  // ∫F_t (V_s·t) dt + Σ P⃗·V_s: a moving surface's (a spinning workpiece's) work on the tip through
+  // friction, in sustained contact and at impacts; 0 for a surface at rest [J].
   double surface_work_j = 0;
   double damping_work_j = 0;       // −∫q̇ᵀCq̇ dt ≤ 0, the beam's damping (SPEC §11) [J]
   // The energy ledger in the inertial frame (SPEC §7, §11), works signed as energy given to the
   // filament: hub_work_j + friction_work_j + surface_work_j + damping_work_j + impact_loss_j = energy_change_j.
   double hub_work_j = 0;            // ω ∫τ dt including the impulsive part, from the angular-momentum balance [J]
   double hub_impulsive_work_j = 0;  // the hub's work during the impacts (the constraint moves) [J]
-  double impact_loss_j = 0;         // the contact impulses' work on the tip, −(energy the impacts dissipate) ≤ 0 [J]
+  double impact_loss_j = 0;         // the contact impulses' work on the tip less a moving surface's part: −(energy the impacts dissipate) ≤ 0 [J]
   double energy_change_j = 0;       // E = T + U at the end less at the start [J]
   double max_tip_deflection_ratio = 0;
   Validity validity = Validity::within;

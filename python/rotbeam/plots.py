@@ -244,11 +244,13 @@ def surface_words(config):
     if shape == "casing":
         lobes = s.get("lobes", 0)
         return (f"casing clearance {1e3 * s['clearance_m']:g} mm"
-                + (f", {lobes} lobes of {1e3 * s.get('lobe_amplitude_m', 0):g} mm" if lobes else ", concentric"))
+                + (f", {lobes} lobe{'s' if lobes != 1 else ''} of {1e3 * s.get('lobe_amplitude_m', 0):g} mm"
+                   if lobes else ", concentric"))
     depth = f"depth {100 * s['depth_fraction']:g} %"
     if shape == "cylinder":
         spin = s.get("speed_rpm", 0)
-        return f"cylinder R {1e3 * s['radius_m']:g} mm{f' at {spin:g} rpm' if spin else ''}, {depth}"
+        radius = f"{1e3 * s['radius_m']:g} mm" if s["radius_m"] < 10 else f"{s['radius_m']:g} m"
+        return f"cylinder R {radius}{f' at {spin:g} rpm' if spin else ''}, {depth}"
     return depth
 
 
@@ -364,22 +366,30 @@ def surface_x(surface, y, x_hint=None):
         with np.errstate(invalid="ignore"):
             return surface["centre_x_m"] - np.sqrt(r * r - y * y)
     if shape == "casing":
-        side = np.ones_like(y) if x_hint is None else np.where(np.asarray(x_hint, dtype=float) < 0, -1.0, 1.0)
-        x = side * surface["nominal_radius_m"]
+        if x_hint is not None:  # the casing on the ray through (x_hint, y): exact where the tip touches it
+            phi = np.arctan2(y, np.asarray(x_hint, dtype=float))
+            return casing_radius(surface, phi) * np.cos(phi)
+        x = np.full_like(y, surface["nominal_radius_m"])
         with np.errstate(invalid="ignore"):
             for _ in range(8):  # ρ(φ) with φ = atan2(Y, X): a fixed point, the lobes being shallow
                 rho = casing_radius(surface, np.arctan2(y, x))
-                x = side * np.sqrt(rho * rho - y * y)
+                x = np.sqrt(rho * rho - y * y)
         return x
     raise ValueError(f"cannot draw a surface of shape {shape!r}")
 
 
 def draw_surface(ax, surface, y_mm, **style):
     """The surface as a curve −X against Y (mm) over the Y values `y_mm` (a casing: whole, closed)."""
-    if surface["shape"] == "casing":
-        phi = np.linspace(-np.pi, np.pi, 1441)
+    if surface["shape"] == "casing":  # 64 points a lobe at least: no aliasing of many lobes
+        phi = np.linspace(-np.pi, np.pi, max(2881, 64 * int(surface.get("lobes", 0)) + 1))
         rho = casing_radius(surface, phi)
         ax.plot(rho * np.sin(phi) * 1e3, -rho * np.cos(phi) * 1e3, **style)
+        return
+    if surface["shape"] == "cylinder":  # by angle, the near half, finely enough for the close-ups
+        r, cx = surface["radius_m"], surface["centre_x_m"]
+        lo, hi = np.nanmin(y_mm) * 1e-3, np.nanmax(y_mm) * 1e-3
+        a = np.linspace(np.arcsin(np.clip(lo / r, -1, 1)), np.arcsin(np.clip(hi / r, -1, 1)), 4001)
+        ax.plot(r * np.sin(a) * 1e3, -(cx - r * np.cos(a)) * 1e3, **style)
         return
     y = np.linspace(np.nanmin(y_mm), np.nanmax(y_mm), 200)
     ax.plot(y, -surface_x(surface, y * 1e-3) * 1e3, **style)
@@ -671,13 +681,18 @@ def tip_path_figure(h, events, summary, title):
         path(axes[0, 1])
         axes[0, 1].set_xlim(Y[near].min() - 1, Y[near].max() + 1)
         x_near = surface_x(surface, h["y_tip_m"][near], h["x_tip_m"][near]) * 1e3
-        axes[0, 1].set_ylim(-x_near.max() - 0.05, -x_near.min() + 2.0)
+        if not np.isfinite(x_near).any():  # the tip beside a small workpiece: its own X
+            x_near = h["x_tip_m"][near] * 1e3
+        axes[0, 1].set_ylim(-np.nanmax(x_near) - 0.05, -np.nanmin(x_near) + 2.0)
     else:
         empty(axes[0, 1], "the tip never came within 2 mm of the surface")
     axes[1, 0].set_title("close-up: the first impact and the bounce back", fontsize=9)
     if imp:
         y0 = events["y_tip_m"][imp[0]] * 1e3
-        x0 = float(surface_x(surface, [y0 * 1e-3], np.interp(events["t_s"][imp[:1]], h["t_s"], h["x_tip_m"]))[0]) * 1e3
+        x_tip0 = np.interp(events["t_s"][imp[:1]], h["t_s"], h["x_tip_m"])
+        x0 = float(surface_x(surface, [y0 * 1e-3], x_tip0)[0]) * 1e3
+        if not math.isfinite(x0):
+            x0 = float(x_tip0[0]) * 1e3
         path(axes[1, 0])
         axes[1, 0].set_xlim(y0 - 0.5, y0 + 1.5)
         axes[1, 0].set_ylim(-x0 - 0.01, -x0 + 0.3)

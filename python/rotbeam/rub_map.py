@@ -15,7 +15,7 @@ SPEED = "hub.speed_rpm"
 # (column, scale, axis label) of the response panels.
 RESPONSE_PANELS = [
     ("last_revolution_max_tip_deflection_ratio", 1.0, "peak |y_t|/L"),
-    ("last_revolution_peak_normal_force_n", 1.0, "peak force in sustained\ncontact (N; 0: impacts only)"),
+    ("last_revolution_peak_normal_force_n", 1.0, "peak force in sustained\ncontact (N; 0: none)"),
     ("last_revolution_normal_impulse_n_s", 1e3, "normal impulse per revolution (mN·s)"),
     ("last_revolution_friction_work_j", -1e3, "friction dissipation per revolution (mJ)"),
     ("last_revolution_impacts", 1.0, "impacts per revolution"),
@@ -61,12 +61,44 @@ def crossings(speeds_rpm, frequencies_hz, order):
     return out
 
 
+# The modes' colours (their curves, crossings and dotted lines), apart from the series' C0, C1, ….
+MODE_COLORS = ["k", "0.45", "0.7"]
+
+
+def casing_words(surface):
+    """'clearance 0.1 mm, 2 cosine lobes of 0.3 mm' for a title."""
+    lobes = int(surface.get("lobes", 0))
+    shape = (f", {lobes} {surface.get('lobe_law', 'cosine')} lobe{'s' if lobes != 1 else ''} of "
+             f"{1e3 * surface.get('lobe_amplitude_m', 0):g} mm" if lobes else ", concentric")
+    return f"clearance {1e3 * surface.get('clearance_m', 0):g} mm{shape}"
+
+
+def casings(folder, table, ok):
+    """The distinct casings (summary.json `surface`) of the cases with results, in sweep order."""
+    out = []
+    for f, good in zip(table["folder"], ok):
+        if good:
+            try:
+                s = json.loads((Path(folder) / f / "summary.json").read_text()).get("surface", {})
+            except (OSError, ValueError):
+                continue
+            if s.get("shape") == "casing" and s not in out:
+                out.append(s)
+    return out
+
+
+def value_words(v):
+    return f"{v:g}" if isinstance(v, (float, np.floating)) else str(v)
+
+
 def rub_map_figure(folder, table, keys, ok, note=""):
     """rub_map.png: the Campbell diagram with its engine-order crossings, and the response panels,
-    against hub speed; a line per value of the other varied keys."""
-    surface = casing_of(folder, table, ok)
-    lobes = int(surface.get("lobes", 0))
-    law = surface.get("lobe_law", "cosine") if lobes else "concentric"
+    against hub speed; a line per value of the other varied keys. When the casing itself varies
+    (its lobes, say), the orders of every casing are drawn and the title says so."""
+    found = casings(folder, table, ok) or [casing_of(folder, table, ok)]
+    lobe_counts = sorted({int(s.get("lobes", 0)) for s in found})
+    lobes = lobe_counts[0] if len(lobe_counts) == 1 else 0
+    law = found[0].get("lobe_law", "cosine") if lobes else "concentric"
     drawn = ok & np.isin(table["status"], ["done", "resumed"])
     rest = [k for k in keys if k != SPEED]
     speed = table[SPEED].astype(float)
@@ -81,7 +113,7 @@ def rub_map_figure(folder, table, keys, ok, note=""):
     # The Campbell diagram from the cases' own frequencies (every case: they do not depend on the run).
     order = np.argsort(speed)
     s_sorted = speed[order]
-    orders = engine_orders(lobes)
+    orders = sorted({o for k in lobe_counts for o in engine_orders(k)})
     # Up to the highest order's frequency at the top speed (or the first mode's, without orders): the
     # modes above it are not excited over these speeds and are left out, so the crossings stay legible.
     reach = max(orders) * float(np.nanmax(s_sorted)) / 60.0 if orders else 0.0
@@ -94,27 +126,27 @@ def rub_map_figure(folder, table, keys, ok, note=""):
         if not np.isfinite(f).any() or (modes and np.nanmin(f) > reach):
             continue
         modes.append(c)
-        campbell.plot(s_sorted, f, color=f"C{len(modes) - 1}", lw=2, label=f"mode {len(modes)}")
+        campbell.plot(s_sorted, f, color=MODE_COLORS[len(modes) - 1], lw=2, label=f"mode {len(modes)}")
         top = max(top, float(np.nanmax(f)))
     top = max(top, min(reach, 1.5 * top)) * 1.1 if top > 0 else 1.0
     crossing_speeds = []
     for o in orders:
         campbell.plot(s_sorted, o * s_sorted / 60.0, "k--", lw=0.7, alpha=0.6)
-        x_end = min(s_sorted[-1], 0.97 * top * 60.0 / o)
+        x_end = min(s_sorted[-1], 0.88 * top * 60.0 / o)
         campbell.annotate(f"{o}×", (x_end, o * x_end / 60.0), fontsize=8, ha="right", va="bottom")
         for j, c in enumerate(modes):
             for x in crossings(s_sorted, table[c].astype(float)[order], o):
                 if not o * x / 60.0 < top:
                     continue
                 crossing_speeds.append((x, j, o))
-                campbell.plot([x], [o * x / 60.0], "o", color=f"C{j}", ms=6, mfc="none", mew=1.5)
+                campbell.plot([x], [o * x / 60.0], "o", color=MODE_COLORS[j], ms=6, mfc="none", mew=1.5)
     campbell.set_ylim(0, top)
     campbell.set_ylabel("frequency (Hz)")
     campbell.set_xlabel(f"{SPEED} (rpm)")
     campbell.grid(alpha=0.3)
-    why = (f"engine orders k·Ω of a casing of {lobes} lobes ({law}) dashed, crossings circled" if orders
-           else "a concentric casing excites no engine order" if lobes == 0
-           else "no engine order of this casing reaches the modes over these speeds")
+    why = ("engine orders dashed, crossings circled" if len(lobe_counts) > 1 and orders
+           else f"engine orders k·Ω of a casing of {lobes} lobes ({law}) dashed, crossings circled" if orders
+           else "a concentric casing excites no engine order")
     campbell.set_title(f"Campbell diagram: in-plane modes at each case's speed; {why}", fontsize=9, pad=4)
     campbell.legend(fontsize=8, loc="upper left")
 
@@ -132,13 +164,13 @@ def rub_map_figure(folder, table, keys, ok, note=""):
             for k, v in zip(rest, g):
                 sel &= table[k] == v
             o = np.argsort(speed[sel])
-            name = ", ".join(f"{k} = {v}" for k, v in zip(rest, g)) or None
+            name = ", ".join(f"{k} = {value_words(v)}" for k, v in zip(rest, g)) or None
             xs, ys, st = speed[sel][o], table[column][sel][o].astype(float) * scale, steady[sel][o]
             ax.plot(xs, ys, lw=1, label=name, **dict(style, marker=None))
             ax.plot(xs[~st], ys[~st], ls="none", marker=style["marker"], ms=4, mfc="white", color=style["color"])
             ax.plot(xs[st], ys[st], ls="none", marker=style["marker"], ms=4, color=style["color"])
         for x, j, _ in crossing_speeds:
-            ax.axvline(x, color=f"C{j}", lw=0.8, ls=":", alpha=0.8)
+            ax.axvline(x, color=MODE_COLORS[j], lw=0.8, ls=":", alpha=0.8)
         ax.set_ylabel(label)
         ax.set_xlabel(f"{SPEED} (rpm)")
         ax.grid(alpha=0.3)
@@ -157,9 +189,10 @@ def rub_map_figure(folder, table, keys, ok, note=""):
     settled = int((steady & revolutions).sum())
     note = (f"\nfilled markers: the {settled} of {int(revolutions.sum())} cases that reached their periodic steady "
             "state; hollow: the last revolution of a motion that did not settle" + note)
-    fig.suptitle(f"Rub map: {int(drawn.sum())} of {n} cases drawn, the last complete revolution of each "
-                 f"(casing: clearance {1e3 * surface.get('clearance_m', 0):g} mm, {lobes} lobes"
-                 f"{', amplitude %g mm' % (1e3 * surface.get('lobe_amplitude_m', 0)) if lobes else ''}){note}",
-                 fontsize=10)
+    which = (f"casing: {casing_words(found[0])}" if len(found) == 1
+             else f"{len(found)} casings, the orders of each drawn: " + "; ".join(casing_words(s) for s in found[:4])
+             + ("; …" if len(found) > 4 else ""))
+    fig.suptitle(f"Rub map: {int(drawn.sum())} of {n} cases drawn, the last complete revolution of each ({which})"
+                 f"{note}", fontsize=10)
     fig.tight_layout()
     return fig

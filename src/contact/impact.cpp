@@ -164,8 +164,9 @@ ImpactResult apply_impact(const BeamModel& beam, const Surface& surface, const I
   // P·(V⁻ + V⁺)/2 in the inertial frame; for a surface at rest and no friction it equals
   // −½(1 − e²)(Ċ⁻)²/a. A Coulomb impulse turns as the tip slides, sticks or reverses: its work is
   // summed over the segments, −∫Ċ dp + ∫V_t dP_t (+ P·V_s for a moving surface).
+  r.surface_work = r.impulse_x * tip.surface_vx + r.impulse_y * tip.surface_vy;
   if (coulomb)
-    r.contact_work = coulomb_work + r.impulse_x * tip.surface_vx + r.impulse_y * tip.surface_vy;
+    r.contact_work = coulomb_work + r.surface_work;
   else
     r.contact_work = 0.5 * (r.impulse_x * (v_before_x + tip.VX) + r.impulse_y * (v_before_y + tip.VY));
   r.delta_t2 = 0.5 * detail::quadratic_form(ws.mass, qd) - t2_before;

@@ -537,6 +537,12 @@ void check_surface(const toml::table& root, const Config& c) {
         refuse(key, "surface.shape = \"casing\"");
       if (!node_of("surface.radius_m"))
         throw ConfigError("surface.shape = \"cylinder\" needs surface.radius_m, the workpiece's radius in m");
+      // A workpiece no wider than the depth lies wholly within the tip's reach: the filament's body would
+      // sweep through it while the tip's circle passes beyond it.
+      if (!(2.0 * sp.radius_m > sp.depth_fraction * L))
+        fail("surface.radius_m", *node_of("surface.radius_m"),
+             "the workpiece is " + format_number(2.0 * sp.radius_m) + " m across, within the tip's reach p·L = " +
+                 format_number(sp.depth_fraction * L) + " m: the filament would pass through it (make it wider than the depth)");
       break;
     case SurfaceShape::casing: {
       refuse("surface.depth_fraction", "a plane or a cylinder; a casing is placed by surface.clearance_m");
@@ -553,7 +559,7 @@ void check_surface(const toml::table& root, const Config& c) {
       const double deepest = sp.clearance_m - (sp.lobe_law == "benchmark" ? 2.0 : 1.0) * (sp.lobes ? sp.lobe_amplitude_m : 0.0);
       if (!(deepest > -L)) {
         const char* key = node_of("surface.lobe_amplitude_m") && sp.lobes ? "surface.lobe_amplitude_m" : "surface.clearance_m";
-        const std::string what = "the casing's smallest radius r_h + L + " + format_number(deepest) +
+        const std::string what = "the casing's smallest radius r_h + L − " + format_number(-deepest) +
                                  " m reaches the hub (beam.length_m = " + format_number(L) + ")";
         if (const toml::node* node = node_of(key)) fail(key, *node, what);
         throw ConfigError(std::string(key) + ": " + what);
@@ -704,7 +710,12 @@ Config validate(toml::table& root) {
     if (c0 >= 0.0) {
       const std::string what = "the initial shape already reaches the surface (gap " + computed_number(c0) + " m >= 0)";
       if (p.displacement_node) fail("initial.modal_displacement", *p.displacement_node, what);
-      throw ConfigError(what);
+      // The straight filament: the surface's place is what puts it there.
+      const bool casing = c.surface.shape == SurfaceShape::casing;
+      const char* key = casing ? "surface.clearance_m" : "surface.depth_fraction";
+      if (const toml::node* node = casing ? root.at_path(key).node() : p.depth_node) fail(key, *node, what);
+      throw ConfigError(std::string(key) + " = " + format_number(casing ? c.surface.clearance_m : c.surface.depth_fraction) +
+                        ": " + what);
     }
   } else {
     // A rigid start must begin clear of the surface and reach it before the end angle. The key that

@@ -480,7 +480,9 @@ void PassRecorder::impact(double t, const Eigen::VectorXd& q, const Eigen::Vecto
     control_.sink->delivery(d);
   }
   s.hub_impulsive_work_j += hub_work;
-  s.impact_loss_j += r.contact_work;
+  // The impulse's work less a moving surface's part (which is the surface's work, not a loss).
+  s.impact_loss_j += r.contact_work - r.surface_work;
+  s.surface_work_j += r.surface_work;
   sample(t, q, qd_before, Phase::free, ContactLoad{});
   PassEvent e;
   e.t = t;

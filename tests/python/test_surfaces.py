@@ -45,6 +45,18 @@ def folders(tmp_path_factory):
     return out
 
 
+@pytest.mark.parametrize("sets", [
+    ["--set", "surface.shape=cylinder", "--set", "surface.radius_m=0.002", "--set", "surface.friction=0.1"],
+    ["--set", "surface.shape=casing", "--set", "surface.clearance_m=1e-5", "--set", "surface.lobes=999",
+     "--set", "surface.lobe_amplitude_m=3e-5", "--set", "surface.friction=0.02"]])
+def test_a_small_workpiece_or_many_lobes_are_drawn(tmp_path, sets):
+    # The tip beside a workpiece narrower than its path (no surface point at its Y) and a first impact
+    # near φ = ±90° on a casing of 999 lobes: both stopped `plot` with NaN axis limits before.
+    cli("run", *sets, "-o", str(tmp_path / "run"), "--quiet")
+    cli("plot", str(tmp_path / "run"), "-o", str(tmp_path / "pictures"))
+    assert (tmp_path / "pictures" / "tip_path.png").stat().st_size > 10000
+
+
 @pytest.mark.parametrize("shape", ["cylinder", "casing"])
 def test_contact_rows_lie_on_the_drawn_surface(folders, shape):
     # The surface's curve passes through the tip wherever the tip is in sustained contact (to 1 µm):
