@@ -266,8 +266,8 @@ py::tuple sweep_plan(const std::optional<std::string>& path, const Values& base,
 }
 
 // Runs the cases `indices` (0-based, of the grid of `given`) in memory on `threads` threads (0: all
-// cores) with the GIL released: [(status, [metric values, NaN where none], message)] in the order
-// of `indices`. `progress(finished)` is called from this (Python) thread as cases finish; Ctrl-C
+// cores) with the GIL released: [(status, [metric values, NaN where none], message, seconds the
+// case took)] in the order of `indices`. `progress(finished)` is called from this (Python) thread as cases finish; Ctrl-C
 // stops the running cases and raises KeyboardInterrupt.
 py::list sweep_run(const std::optional<std::string>& path, const std::optional<std::string>& text,
                    const std::string& name, const Values& base, const Axes& given, const std::vector<std::size_t>& indices,
@@ -283,6 +283,7 @@ py::list sweep_run(const std::optional<std::string>& path, const std::optional<s
     configs.push_back(load(cases[i]));
   }
   std::vector<SweepCaseResult> results(configs.size());
+  std::vector<double> seconds(configs.size(), 0.0);
   StopToken stop;
   std::atomic<std::size_t> finished{0};
   std::exception_ptr failure;
@@ -294,7 +295,9 @@ py::list sweep_run(const std::optional<std::string>& path, const std::optional<s
       runner.threads = threads;
       runner.stop = &stop;
       run_jobs(configs.size(), [&](std::size_t k) {
+        const auto start = std::chrono::steady_clock::now();
         results[k] = run_sweep_case(configs[k], &stop);
+        seconds[k] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         ++finished;
       }, runner);
     } catch (...) {
@@ -344,7 +347,7 @@ py::list sweep_run(const std::optional<std::string>& path, const std::optional<s
       const std::optional<double> v = sweep_metric_value(r.summary, m);
       metrics.append(v ? *v : NAN);
     }
-    out.append(py::make_tuple(sweep_status_name(r.status), metrics, r.message));
+    out.append(py::make_tuple(sweep_status_name(r.status), metrics, r.message, seconds[k]));
   }
   return out;
 }
@@ -385,7 +388,7 @@ PYBIND11_MODULE(_core, m) {
         "[(column, units, description)] of the metrics).");
   m.def("sweep_run", &sweep_run, py::arg("path"), py::arg("text"), py::arg("name"), py::arg("overrides"), py::arg("axes"),
         py::arg("indices"), py::arg("threads"), py::arg("progress") = py::none(),
-        "Runs the cases `indices` of a sweep's grid in memory: [(status, [metric values], message)].");
+        "Runs the cases `indices` of a sweep's grid in memory: [(status, [metric values], message, seconds)].");
   m.def("sweep_metrics", &metric_table, py::arg("brush"),
         "The metric columns of sweep.csv: [(column, units, description)], a filament's or a brush's.");
   m.def("parse_sweep_axis", &parse_axis, py::arg("spec"),

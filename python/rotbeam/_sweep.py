@@ -5,17 +5,22 @@ xarray Dataset (issue 20). The grid, its validation and every case's run are the
 
 from __future__ import annotations
 
+import collections
 import math
 import os
+import statistics
 import sys
 import time
 from typing import Any, Callable, Mapping, Sequence
 
 from . import _core
 
-# A Dask task's target duration: cases are bundled so that one task runs about this long (at least
-# 0.1 s, the scheduler's overhead being a few milliseconds per task), judged from a first case's time.
-TASK_SECONDS = 0.2
+# A Dask task's target duration: cases are bundled so that one task runs about this long, judged
+# from a first task's cases. Each task must run at least 0.1 s (the scheduler's overhead is a few
+# milliseconds per task); the target leaves room for cases that cost five times the first ones'.
+TASK_SECONDS = 0.5
+# The cases of the first task, whose times size the next ones.
+PROBE_CASES = 4
 
 
 def axes_of(vary: Mapping[str, Any], toml_value: Callable[[Any, str], str]) -> list[tuple[str, list[str]]]:
@@ -70,38 +75,28 @@ class _Progress:
 
 
 def run_bundle(text: str | None, name: str, overrides: Sequence[tuple[str, str]], axes: Sequence[tuple[str, list[str]]],
-               indices: Sequence[int]) -> tuple[str, list[tuple[str, list[float], str]], float]:
+               indices: Sequence[int]) -> tuple[str, list[tuple[str, list[float], str, float]], float]:
     """A Dask task: the cases `indices` of the grid, one after the other (the workers' threads run
-    tasks side by side): (the worker's rotbeam version, the rows, the seconds it took)."""
+    tasks side by side): (the worker's rotbeam version, the rows with each case's seconds, the
+    seconds the task took)."""
     from . import __version__
     start = time.perf_counter()
     rows = _core.sweep_run(None, text, name, list(overrides), list(axes), list(indices), 1, None)
     return __version__, rows, time.perf_counter() - start
 
 
-def bundles(indices: Sequence[int], size: int) -> list[list[int]]:
-    """`indices` in consecutive bundles of about `size` cases, as even as possible."""
-    if not indices:
-        return []
-    count = max(1, math.ceil(len(indices) / max(1, size)))
-    base, extra = divmod(len(indices), count)
-    out, at = [], 0
-    for k in range(count):
-        n = base + (1 if k < extra else 0)
-        out.append(list(indices[at:at + n]))
-        at += n
-    return out
-
-
 def run_on_dask(client: Any, path: str | None, overrides: Sequence[tuple[str, str]], axes: Sequence[tuple[str, list[str]]],
                 total: int, retries: int, progress: _Progress, task_seconds: float,
                 log: list | None = None) -> dict[int, tuple]:
-    """The rows of every case, run on the Dask cluster of `client`. The first case runs alone and
-    its time sets the bundle size (cases per task: task_seconds over its time; all at once, one case
-    per task, when it has not finished within task_seconds). Each task is retried `retries` times
-    when it raises; a task on a worker that dies is rescheduled by the scheduler (up to its
-    distributed.scheduler.allowed-failures). Rows are taken as each task finishes, so a worker
-    lost later costs only its tasks under way. Ctrl-C cancels the tasks and raises KeyboardInterrupt.
+    """The rows of every case, run on the Dask cluster of `client`, in bundles of consecutive cases
+    sized to run task_seconds each from the median time of the cases finished so far: the first
+    task (PROBE_CASES cases) is waited for up to 2 task_seconds (cases that take longer are not
+    bundled), then at most two tasks per worker thread are under way, each new one sized by what
+    has been measured; the last bundle takes the rest when fewer than two bundles' cases are left,
+    so that no task is a small remainder. Each task is retried `retries` times when it raises; a
+    task on a worker that dies is rescheduled by the scheduler (up to its
+    distributed.scheduler.allowed-failures). Rows are taken as each task finishes, so a worker lost
+    later costs only its tasks under way. Ctrl-C cancels the tasks and raises KeyboardInterrupt.
     `log` gets (cases, seconds) of each task, in the order they finished."""
     from distributed import as_completed, wait
     from . import __version__
@@ -112,6 +107,9 @@ def run_on_dask(client: Any, path: str | None, overrides: Sequence[tuple[str, st
     rows: dict[int, tuple] = {}
     futures = []
     cases_of = {}  # a task's key: its cases
+    times: list[float] = []  # every finished case's seconds
+    queue = collections.deque(range(total))
+    limit = 2 * max(1, sum(client.nthreads().values()))
 
     def submit(indices):
         f = client.submit(run_bundle, text, name, list(overrides), list(axes), indices, retries=retries, pure=False)
@@ -125,27 +123,36 @@ def run_on_dask(client: Any, path: str | None, overrides: Sequence[tuple[str, st
             raise RuntimeError(f"a Dask worker runs rotbeam {version}, this process {__version__}: install the "
                                "same version everywhere (results of two versions are not one study)")
         for i, row in zip(cases_of[future.key], got):
-            rows[i] = tuple(row)
+            rows[i] = tuple(row[:3])
+        times.extend(row[3] for row in got)
         if log is not None:
             log.append((cases_of[future.key], seconds))
         progress(len(rows))
-        return seconds
+
+    def next_bundle():
+        size = 1 if not times else max(1, math.ceil(task_seconds / max(statistics.median(times), 1e-6)))
+        n = len(queue) if len(queue) < 2 * size else size
+        return [queue.popleft() for _ in range(n)]
 
     try:
-        first = submit([0])
+        first = submit([queue.popleft() for _ in range(min(PROBE_CASES, total))])
         try:
-            wait([first], timeout=task_seconds)
+            wait([first], timeout=2 * task_seconds)
         except TimeoutError:  # distributed's wait raises where concurrent.futures' returns
             pass
         if first.done():
-            seconds = take(first)
-            size = max(1, math.ceil(task_seconds / max(seconds, 1e-6)))
-            pending = [submit(b) for b in bundles(list(range(1, total)), size)]
+            take(first)
+            first.release()
+            running = as_completed([])
         else:
-            pending = [first] + [submit([i]) for i in range(1, total)]
-        for future in as_completed(pending):
+            running = as_completed([first])
+        while queue and running.count() < limit:
+            running.add(submit(next_bundle()))
+        for future in running:
             take(future)
             future.release()
+            while queue and running.count() < limit:
+                running.add(submit(next_bundle()))
     except BaseException:
         client.cancel(futures)
         raise
@@ -169,7 +176,7 @@ def sweep(vary: Mapping[str, Any], config: Any, overrides: Mapping[str, Any] | N
     try:
         if client is None:
             got = _core.sweep_run(path, None, "", sets, axes, list(range(total)), jobs, shown)
-            rows = {i: tuple(r) for i, r in enumerate(got)}
+            rows = {i: tuple(r[:3]) for i, r in enumerate(got)}
         else:
             rows = run_on_dask(client, path, sets, axes, total, retries, shown, task_seconds)
     finally:

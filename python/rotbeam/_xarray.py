@@ -12,7 +12,7 @@ import io
 import json
 import math
 import tomllib
-from typing import Any, Iterable, Mapping, Sequence
+from typing import Any, Mapping, Sequence
 
 import numpy as np
 
@@ -219,11 +219,3 @@ def read_description(path: str) -> dict[str, Any]:
     except (ValueError, KeyError, TypeError) as e:
         raise DamagedSweep(f"{path}: not a sweep description rotbeam wrote ({e})") from None
     return d
-
-
-def concat_rows(parts: Iterable[Mapping[int, Any]]) -> dict[int, Any]:
-    """The union of rows by case index."""
-    out = {}
-    for p in parts:
-        out.update(p)
-    return out

@@ -99,20 +99,20 @@ def test_threads_shards_merge_and_dask_give_identical_datasets(tmp_path, threads
 
 def test_dask_bundles_cases_into_tasks_of_at_least_a_tenth_of_a_second(cluster):
     from rotbeam import _sweep
-    assert _sweep.bundles(list(range(1, 24)), 5) == [[1, 2, 3, 4, 5], [6, 7, 8, 9, 10], [11, 12, 13, 14, 15],
-                                                    [16, 17, 18, 19], [20, 21, 22, 23]]
-    assert _sweep.bundles([], 3) == [] and _sweep.bundles([7], 10) == [[7]]
-    # 40 cases of ~15 ms: the first runs alone and sizes the others; each later task runs >= 0.1 s.
+    # 160 cases of a few ms (about 1 s in all): the first four run as one task and their times
+    # size the next, each of which runs >= 0.1 s.
     path, sets = rotbeam._arguments(None, BASE)
-    axes = _sweep.axes_of({"hub.speed_rpm": list(range(2000, 3000, 25))}, rotbeam._toml_value)
+    axes = _sweep.axes_of({"hub.speed_rpm": list(range(2000, 3000, 25)), "surface.friction": [0.1, 0.2, 0.3, 0.4]},
+                          rotbeam._toml_value)
     log = []
-    rows = _sweep.run_on_dask(cluster, path, sets, axes, 40, 0, _sweep._Progress(False, 40), _sweep.TASK_SECONDS, log)
-    assert sorted(rows) == list(range(40))
-    assert log[0][0] == [0]
+    rows = _sweep.run_on_dask(cluster, path, sets, axes, 160, 0, _sweep._Progress(False, 160), _sweep.TASK_SECONDS, log)
+    assert sorted(rows) == list(range(160))
+    assert log[0][0] == list(range(4))
     later = log[1:]
-    assert 1 <= len(later) < 39 and all(len(cases) > 1 for cases, _ in later), log
-    assert all(seconds >= 0.1 for _, seconds in later), log
-    assert sorted(i for cases, _ in log for i in cases) == list(range(40))
+    assert 1 <= len(later) < 40 and all(len(cases) > 1 for cases, _ in later), log
+    assert all(cases == list(range(cases[0], cases[-1] + 1)) for cases, _ in log)  # consecutive cases
+    assert all(seconds >= 0.1 for _, seconds in later), [(len(c), s) for c, s in log]
+    assert sorted(i for cases, _ in log for i in cases) == list(range(160))
 
 
 def test_a_dask_worker_killed_mid_sweep_loses_nothing(slow_threads):
@@ -135,7 +135,7 @@ def test_a_dask_worker_killed_mid_sweep_loses_nothing(slow_threads):
         ds = rotbeam.sweep(SLOW, overrides=SLOW_BASE, client=client, progress=progress)
         assert killed and killed[0] not in client.run(os.getpid).values()  # it was killed, and replaced
     assert killed, "no worker was busy to be killed"
-    assert seen[-1] == 24 and seen == sorted(seen) and seen[0] == 1
+    assert seen[-1] == 24 and seen == sorted(seen) and len(seen) > 2
     xr.testing.assert_identical(results(ds), results(slow_threads))
 
 
