@@ -7,6 +7,7 @@ import os
 import shutil
 import signal
 import subprocess
+import sys
 import time
 
 import pytest
@@ -205,3 +206,21 @@ def test_merge_and_shard_refuse_bad_input_in_one_line(tmp_path):
         f.write("mine")
     assert "the folder exists and holds files" in refused("s0", "s1")
     assert open(os.path.join(out, "keep.txt")).read() == "mine" and os.listdir(out) == ["keep.txt"]
+
+
+def test_ctrl_c_stops_a_sweep_on_threads_at_once(tmp_path):
+    # SIGINT while the cases run: the running cases stop within a step and KeyboardInterrupt is
+    # raised, long before the sweep would have finished (24 cases of ~0.3 s on one thread).
+    script = ("import rotbeam, sys\n"
+              "try:\n"
+              f"    rotbeam.sweep({SLOW!r}, overrides={SLOW_BASE!r}, jobs=1, progress=lambda n, t: print(n, flush=True))\n"
+              "except KeyboardInterrupt:\n"
+              "    print('interrupted', flush=True); sys.exit(3)\n")
+    proc = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE,
+                            text=True, env=os.environ)
+    assert proc.stdout.readline().strip() == "1"  # a case has finished: the sweep is under way
+    start = time.monotonic()
+    proc.send_signal(signal.SIGINT)
+    out, _ = proc.communicate(timeout=60)
+    assert proc.returncode == 3 and out.strip().endswith("interrupted"), out
+    assert time.monotonic() - start < 2.0

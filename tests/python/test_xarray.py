@@ -6,6 +6,7 @@ import json
 import math
 import os
 import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -167,7 +168,7 @@ def test_open_sweep_names_a_damaged_index(tmp_path):
     (out / "sweep.csv").write_text(text.replace("case,folder", "case,dossier"))
     with pytest.raises(ValueError, match="sweep.csv: its columns are not those of the sweep"):
         rotbeam.open_sweep(out)
-    done = subprocess.run([os.environ.get("ROTBEAM_PYTHON", "/usr/bin/python3"), "-m", "rotbeam.netcdf", str(out)],
+    done = subprocess.run([sys.executable, "-m", "rotbeam.netcdf", str(out)],
                           capture_output=True, text=True)
     assert done.returncode == 2 and done.stderr.startswith("rotbeam: error: ") and done.stderr.count("\n") == 1
     assert not (out / "sweep.nc").exists()
