@@ -274,13 +274,13 @@ py::list sweep_run(const std::optional<std::string>& path, const std::optional<s
                    int threads, const py::object& progress) {
   if (threads < 0) throw ConfigError("jobs = " + std::to_string(threads) + ": must be >= 0 (0: all cores)");
   const std::vector<SweepAxis> axes = sweep_axes(given);
-  const std::vector<SweepCase> cases = sweep_cases(axes);
+  const std::size_t total = sweep_grid_size(axes);  // a task loads its own cases only, not the grid's
   const CaseLoader load = python_loader(path, text, name, base, axes);
   std::vector<Config> configs;
   for (std::size_t i : indices) {
-    if (i >= cases.size())
-      throw ConfigError("case index " + std::to_string(i) + ": the grid has " + std::to_string(cases.size()) + " cases");
-    configs.push_back(load(cases[i]));
+    if (i >= total)
+      throw ConfigError("case index " + std::to_string(i) + ": the grid has " + std::to_string(total) + " cases");
+    configs.push_back(load(sweep_case_at(axes, i)));
   }
   std::vector<SweepCaseResult> results(configs.size());
   std::vector<double> seconds(configs.size(), 0.0);

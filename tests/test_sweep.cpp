@@ -57,6 +57,13 @@ TEST(SweepCases, CartesianGridLastAxisFastest) {
   EXPECT_EQ(cases[1].overrides, (std::vector<std::string>{"hub.speed_rpm=1", "initial.start=y"}));
   EXPECT_EQ(cases[5].overrides, (std::vector<std::string>{"hub.speed_rpm=2", "initial.start=z"}));
   EXPECT_EQ(cases[5].folder, "case-0006");
+  // One case without the others (a Dask task loads its own): the same.
+  const std::vector<SweepAxis> axes = {parse_sweep_axis("hub.speed_rpm=1,2"), parse_sweep_axis("initial.start=x,y,z")};
+  EXPECT_EQ(sweep_grid_size(axes), 6u);
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    EXPECT_EQ(sweep_case_at(axes, i).overrides, cases[i].overrides);
+    EXPECT_EQ(sweep_case_at(axes, i).folder, cases[i].folder);
+  }
 }
 
 namespace {

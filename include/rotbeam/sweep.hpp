@@ -42,6 +42,12 @@ inline constexpr std::size_t kMaxSweepCases = 100000;
 /// more than kMaxSweepCases cases.
 std::vector<SweepCase> sweep_cases(const std::vector<SweepAxis>& axes);
 
+/// The number of cases of the grid, checked as sweep_cases checks it (ConfigError).
+std::size_t sweep_grid_size(const std::vector<SweepAxis>& axes);
+
+/// Case `index` (0-based, < sweep_grid_size) of the grid: sweep_cases(axes)[index], without the others.
+SweepCase sweep_case_at(const std::vector<SweepAxis>& axes, std::size_t index);
+
 /// How a sweep gets one case's configuration: the base case (a file, overrides) with the case's
 /// axis values applied last. Throws ConfigError.
 using CaseLoader = std::function<Config(const SweepCase&)>;

@@ -16,8 +16,9 @@ from typing import Any, Callable, Mapping, Sequence
 from . import _core
 
 # A Dask task's target duration: cases are bundled so that one task runs about this long, judged
-# from a first task's cases. Each task must run at least 0.1 s (the scheduler's overhead is a few
-# milliseconds per task); the target leaves room for cases that cost five times the first ones'.
+# from the median time of the cases finished so far. Each task must run at least 0.1 s (the
+# scheduler's overhead is a few milliseconds per task); the target leaves room for cases that cost
+# up to five times the median.
 TASK_SECONDS = 0.5
 # The cases of the first task, whose times size the next ones.
 PROBE_CASES = 4

@@ -274,7 +274,7 @@ SweepAxis parse_sweep_axis(const std::string& spec) {
   return axis;
 }
 
-std::vector<SweepCase> sweep_cases(const std::vector<SweepAxis>& axes) {
+std::size_t sweep_grid_size(const std::vector<SweepAxis>& axes) {
   std::size_t total = 1;
   for (std::size_t i = 0; i < axes.size(); ++i) {
     for (std::size_t j = 0; j < i; ++j)
@@ -285,22 +285,30 @@ std::vector<SweepCase> sweep_cases(const std::vector<SweepAxis>& axes) {
       throw ConfigError("--vary: the grid has more than " + std::to_string(kMaxSweepCases) +
                         " cases; split the study into several sweeps");
   }
-  std::vector<SweepCase> cases;
-  for (std::size_t i = 0; i < total; ++i) {
-    SweepCase c;
-    c.index = static_cast<int>(i);
-    std::size_t rem = i;
-    c.values.resize(axes.size());
-    for (std::size_t k = axes.size(); k-- > 0;) {
-      c.values[k] = axes[k].values[rem % axes[k].values.size()];
-      rem /= axes[k].values.size();
-    }
-    for (std::size_t k = 0; k < axes.size(); ++k) c.overrides.push_back(axes[k].key + "=" + c.values[k]);
-    char name[32];
-    std::snprintf(name, sizeof name, "case-%04zu", i + 1);
-    c.folder = name;
-    cases.push_back(c);
+  return total;
+}
+
+SweepCase sweep_case_at(const std::vector<SweepAxis>& axes, std::size_t index) {
+  SweepCase c;
+  c.index = static_cast<int>(index);
+  std::size_t rem = index;
+  c.values.resize(axes.size());
+  for (std::size_t k = axes.size(); k-- > 0;) {
+    c.values[k] = axes[k].values[rem % axes[k].values.size()];
+    rem /= axes[k].values.size();
   }
+  for (std::size_t k = 0; k < axes.size(); ++k) c.overrides.push_back(axes[k].key + "=" + c.values[k]);
+  char name[32];
+  std::snprintf(name, sizeof name, "case-%04zu", index + 1);
+  c.folder = name;
+  return c;
+}
+
+std::vector<SweepCase> sweep_cases(const std::vector<SweepAxis>& axes) {
+  const std::size_t total = sweep_grid_size(axes);
+  std::vector<SweepCase> cases;
+  cases.reserve(total);
+  for (std::size_t i = 0; i < total; ++i) cases.push_back(sweep_case_at(axes, i));
   return cases;
 }
 
