@@ -7,13 +7,17 @@
 #include "rotbeam/impact_output.hpp"
 #include "rotbeam/modal_analysis.hpp"
 #include "rotbeam/pass_output.hpp"
+#include "rotbeam/sweep.hpp"
+#include "rotbeam/version.hpp"
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <atomic>
 #include <charconv>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <future>
@@ -220,6 +224,139 @@ py::array_t<double> filament_shape(const std::optional<std::string>& path, const
   return out;
 }
 
+using Axes = std::vector<std::pair<std::string, std::vector<std::string>>>;  // (key, TOML literals)
+
+// The axes of a Python sweep: known keys (as --vary's, named `vary`), each with values.
+std::vector<SweepAxis> sweep_axes(const Axes& given) {
+  std::vector<SweepAxis> axes;
+  for (const auto& [key, values] : given) {
+    require_known_key(key, "vary");
+    if (values.empty()) throw ConfigError("vary " + printable(key) + ": no values (give at least one)");
+    axes.push_back({key, values});
+  }
+  if (axes.empty()) throw ConfigError("vary: give at least one key and its values, e.g. {\"hub.speed_rpm\": [550, 3000]}");
+  return axes;
+}
+
+// A case's configuration: the base (a file's path, or its text named `name`, with (key, value)
+// overrides) and the case's values applied last, keys taken whole.
+CaseLoader python_loader(const std::optional<std::string>& path, const std::optional<std::string>& text,
+                         const std::string& name, const Values& base, const std::vector<SweepAxis>& axes) {
+  return [path, text, name, base, axes](const SweepCase& c) {
+    Values values = base;
+    for (std::size_t k = 0; k < axes.size(); ++k) values.emplace_back(axes[k].key, c.values[k]);
+    return text ? load_config_text_values(*text, name, values) : load_config_values(path, values);
+  };
+}
+
+py::list metric_table(bool brush) {
+  py::list out;
+  for (const SweepMetric& m : sweep_metrics(brush)) out.append(py::make_tuple(m.column, m.units, m.description));
+  return out;
+}
+
+// A sweep's grid with every case validated: ([values of each case], sweep.json's description of the
+// whole grid, [(column, units, description)] of its metrics).
+py::tuple sweep_plan(const std::optional<std::string>& path, const Values& base, const Axes& given) {
+  const std::vector<SweepAxis> axes = sweep_axes(given);
+  const SweepPlan plan = plan_sweep(axes, python_loader(path, std::nullopt, "", base, axes));
+  py::list cases;
+  for (const SweepCase& c : plan.cases) cases.append(py::cast(c.values));
+  return py::make_tuple(cases, from_json(sweep_description(plan, Shard{})), metric_table(plan.brush));
+}
+
+// Runs the cases `indices` (0-based, of the grid of `given`) in memory on `threads` threads (0: all
+// cores) with the GIL released: [(status, [metric values, NaN where none], message, seconds the
+// case took)] in the order of `indices`. `progress(finished)` is called from this (Python) thread as cases finish; Ctrl-C
+// stops the running cases and raises KeyboardInterrupt.
+py::list sweep_run(const std::optional<std::string>& path, const std::optional<std::string>& text,
+                   const std::string& name, const Values& base, const Axes& given, const std::vector<std::size_t>& indices,
+                   int threads, const py::object& progress) {
+  if (threads < 0) throw ConfigError("jobs = " + std::to_string(threads) + ": must be >= 0 (0: all cores)");
+  const std::vector<SweepAxis> axes = sweep_axes(given);
+  const std::size_t total = sweep_grid_size(axes);  // a task loads its own cases only, not the grid's
+  const CaseLoader load = python_loader(path, text, name, base, axes);
+  std::vector<Config> configs;
+  for (std::size_t i : indices) {
+    if (i >= total)
+      throw ConfigError("case index " + std::to_string(i) + ": the grid has " + std::to_string(total) + " cases");
+    configs.push_back(load(sweep_case_at(axes, i)));
+  }
+  std::vector<SweepCaseResult> results(configs.size());
+  std::vector<double> seconds(configs.size(), 0.0);
+  StopToken stop;
+  std::atomic<std::size_t> finished{0};
+  std::exception_ptr failure;
+  std::promise<void> done;
+  std::future<void> finished_all = done.get_future();
+  std::thread worker([&] {
+    try {
+      JobRunnerOptions runner;
+      runner.threads = threads;
+      runner.stop = &stop;
+      run_jobs(configs.size(), [&](std::size_t k) {
+        const auto start = std::chrono::steady_clock::now();
+        results[k] = run_sweep_case(configs[k], &stop);
+        seconds[k] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        ++finished;
+      }, runner);
+    } catch (...) {
+      failure = std::current_exception();
+    }
+    done.set_value();
+  });
+  bool interrupted = false;
+  std::size_t reported = 0;
+  std::optional<py::error_already_set> progress_error;
+  {
+    py::gil_scoped_release release;
+    while (finished_all.wait_for(std::chrono::milliseconds(50)) != std::future_status::ready) {
+      py::gil_scoped_acquire acquire;
+      if (PyErr_CheckSignals() != 0) {
+        stop.request_stop();
+        interrupted = true;
+        break;
+      }
+      const std::size_t now = finished;
+      if (!progress.is_none() && now != reported) {
+        reported = now;
+        try {
+          progress(now);
+        } catch (py::error_already_set& e) {
+          stop.request_stop();
+          progress_error = std::move(e);
+          break;
+        }
+      }
+    }
+  }
+  worker.join();
+  if (interrupted) throw py::error_already_set();
+  if (progress_error) throw *progress_error;
+  if (failure) std::rethrow_exception(failure);
+  if (!progress.is_none() && finished != reported) progress(static_cast<std::size_t>(finished));
+  py::list out;
+  for (std::size_t k = 0; k < results.size(); ++k) {
+    SweepCaseResult& r = results[k];
+    if (r.summary.is_null() && r.status == SweepStatus::error && r.message.empty()) {
+      r.status = SweepStatus::interrupted;
+      r.message = "not run (interrupted)";
+    }
+    py::list metrics;
+    for (const SweepMetric& m : sweep_metrics(configs[k].brush.has_value())) {
+      const std::optional<double> v = sweep_metric_value(r.summary, m);
+      metrics.append(v ? *v : NAN);
+    }
+    out.append(py::make_tuple(sweep_status_name(r.status), metrics, r.message, seconds[k]));
+  }
+  return out;
+}
+
+py::tuple parse_axis(const std::string& spec) {
+  const SweepAxis a = parse_sweep_axis(spec);
+  return py::make_tuple(a.key, a.values);
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -246,4 +383,15 @@ PYBIND11_MODULE(_core, m) {
   m.def("filament_shape", &filament_shape, py::arg("path"), py::arg("overrides"), py::arg("q"), py::arg("xi"),
         "The centreline in the hub frame [m] for each row of q (frames x n) at the points xi: frames x points x 2.");
   m.def("config_keys", &config_keys, "Every configuration key, 'section.key'.");
+  m.def("sweep_plan", &sweep_plan, py::arg("path"), py::arg("overrides"), py::arg("axes"),
+        "A sweep's grid, every case validated: ([values of each case], sweep.json's description, "
+        "[(column, units, description)] of the metrics).");
+  m.def("sweep_run", &sweep_run, py::arg("path"), py::arg("text"), py::arg("name"), py::arg("overrides"), py::arg("axes"),
+        py::arg("indices"), py::arg("threads"), py::arg("progress") = py::none(),
+        "Runs the cases `indices` of a sweep's grid in memory: [(status, [metric values], message, seconds)].");
+  m.def("sweep_metrics", &metric_table, py::arg("brush"),
+        "The metric columns of sweep.csv: [(column, units, description)], a filament's or a brush's.");
+  m.def("parse_sweep_axis", &parse_axis, py::arg("spec"),
+        "`--vary` text (KEY=V1,V2,… or KEY=A:B:N) as (key, [TOML literals]).");
+  m.attr("__version__") = kVersion;
 }

@@ -7,6 +7,8 @@ packages=(
   libeigen3-dev libboost-dev libtomlplusplus-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libbenchmark-dev
   pybind11-dev python3-pybind11 python3-dev python3-numpy python3-matplotlib python3-pil python3-pytest
+  python3-xarray python3-netcdf4 python3-distributed
+  python3-pip python3-setuptools python3-wheel python3-venv
   clang libclang-rt-dev
 )
 

@@ -1,8 +1,11 @@
 // Sweeps: axis parsing (lists and ranges), the Cartesian grid, resumption, failure isolation.
 #include "rotbeam/sweep.hpp"
 
+#include "rotbeam/pass_output.hpp"
+
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -54,6 +57,13 @@ TEST(SweepCases, CartesianGridLastAxisFastest) {
   EXPECT_EQ(cases[1].overrides, (std::vector<std::string>{"hub.speed_rpm=1", "initial.start=y"}));
   EXPECT_EQ(cases[5].overrides, (std::vector<std::string>{"hub.speed_rpm=2", "initial.start=z"}));
   EXPECT_EQ(cases[5].folder, "case-0006");
+  // One case without the others (a Dask task loads its own): the same.
+  const std::vector<SweepAxis> axes = {parse_sweep_axis("hub.speed_rpm=1,2"), parse_sweep_axis("initial.start=x,y,z")};
+  EXPECT_EQ(sweep_grid_size(axes), 6u);
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    EXPECT_EQ(sweep_case_at(axes, i).overrides, cases[i].overrides);
+    EXPECT_EQ(sweep_case_at(axes, i).folder, cases[i].folder);
+  }
 }
 
 namespace {
@@ -145,4 +155,156 @@ TEST(Sweep, ABadValueStopsBeforeAnythingRuns) {
     EXPECT_NE(std::string(e.what()).find("case-0002 (surface.friction=-0.4)"), std::string::npos) << e.what();
   }
   EXPECT_FALSE(fs::exists(dir));
+}
+
+TEST(SweepShard, ParsesIOfNAndRefusesTheRest) {
+  EXPECT_EQ(parse_shard("0/3").index, 0);
+  EXPECT_EQ(parse_shard("2/3").index, 2);
+  EXPECT_EQ(parse_shard("2/3").count, 3);
+  auto message = [](const std::string& text) {
+    try {
+      parse_shard(text);
+    } catch (const ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(message("3/3"), "--shard 3/3: I must be from 0 to 2 (the shards of 3 are counted from 0)");
+  EXPECT_EQ(message("x"), "--shard x: expected I/N, shard I of N counted from 0 (e.g. --shard 0/4 … --shard 3/4)");
+  for (const char* bad : {"", "1", "1/", "/2", "-1/2", "1/0", "1/2/3", "1.0/2", " 1/2", "99999999999999999999/2"})
+    EXPECT_NE(message(bad).rfind("--shard ", 0), std::string::npos) << bad;
+}
+
+TEST(SweepShard, InMemoryCasesEqualTheFilesToTheLastBit) {
+  // run_sweep_case (Python's sweeps, Dask's tasks) keeps no rows; its metrics are those of the
+  // case run into files by `rotbeam sweep`, a diagnosed failure included.
+  const std::string dir = fresh("memory");
+  SweepOptions options;
+  options.dir = dir;
+  options.jobs = 2;
+  options.base_overrides = {"output.interval_s=1e-3", "simulation.max_impacts=4", "beam.modes=3"};
+  const std::vector<SweepAxis> axes = {parse_sweep_axis("hub.speed_rpm=550,3000"), parse_sweep_axis("surface.friction=0.1,0.4")};
+  const SweepReport files = run_sweep(axes, options);
+  const SweepPlan plan = plan_sweep(axes, case_loader(std::nullopt, options.base_overrides));
+  ASSERT_EQ(plan.configs.size(), 4u);
+  int failed = 0, done = 0;
+  for (std::size_t i = 0; i < plan.configs.size(); ++i) {
+    const SweepCaseResult memory = run_sweep_case(plan.configs[i], nullptr);
+    EXPECT_EQ(memory.status, files.results[i].status);
+    EXPECT_EQ(memory.message, files.results[i].message);
+    failed += memory.status == SweepStatus::failed;
+    done += memory.status == SweepStatus::done;
+    for (const SweepMetric& m : sweep_metrics(false)) {
+      if (std::string(m.column) == "wall_time_s") continue;
+      const auto a = sweep_metric_value(memory.summary, m), b = sweep_metric_value(files.results[i].summary, m);
+      ASSERT_EQ(a.has_value(), b.has_value()) << m.column;
+      if (a) EXPECT_EQ(*a, *b) << m.column;  // bit for bit
+    }
+  }
+  EXPECT_GT(failed, 0);
+  EXPECT_GT(done, 0);
+  // What the cases share, and what varies.
+  EXPECT_EQ(plan.common_config["beam"]["modes"], 3);
+  EXPECT_FALSE(plan.common_config["hub"].contains("speed_rpm"));
+  EXPECT_EQ(plan.varying_keys, (std::vector<std::string>{"hub.speed_rpm", "surface.friction"}));
+  fs::remove_all(dir);
+}
+
+namespace {
+std::string merge_message(const MergeOptions& o) {
+  try {
+    merge_sweeps(o);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST(SweepShard, ShardsMergeIntoTheSweepAndMergeRefusesWhatDoesNotFit) {
+  // Three shards of a 6-case grid, run into their own folders, merge into a folder whose sweep.csv
+  // is the unsharded sweep's (but the wall times), and which a sweep of the same grid resumes whole.
+  const std::string root = fresh("shards");
+  const std::vector<SweepAxis> axes = {parse_sweep_axis("hub.speed_rpm=550,3000"),
+                                       parse_sweep_axis("surface.friction=0.1,0.4,0.7")};
+  SweepOptions options;
+  options.jobs = 1;
+  options.base_overrides = {"output.interval_s=1e-3", "beam.modes=3"};
+  std::vector<std::filesystem::path> dirs;
+  for (int i = 0; i < 3; ++i) {
+    options.dir = fs::path(root) / ("shard" + std::to_string(i));
+    options.shard = Shard{i, 3};
+    const SweepReport r = run_sweep(axes, options);
+    ASSERT_EQ(r.cases.size(), 2u);
+    EXPECT_EQ(r.grid_cases, 6u);
+    EXPECT_EQ(r.cases[0].index, i);  // cases i and i + 3
+    EXPECT_EQ(r.cases[1].index, i + 3);
+    EXPECT_TRUE(fs::exists(options.dir / "sweep.json"));
+    EXPECT_FALSE(fs::exists(options.dir / "case-0001") && i != 0);
+    dirs.push_back(options.dir);
+  }
+  options.dir = fs::path(root) / "whole";
+  options.shard = Shard{};
+  const SweepReport whole = run_sweep(axes, options);
+
+  MergeOptions merge;
+  merge.dirs = dirs;
+  merge.output = fs::path(root) / "merged";
+  // Refused before anything is written: a missing shard, one given twice, another grid, another
+  // configuration, an unfinished shard, an output folder that holds files.
+  merge.dirs = {dirs[0], dirs[2]};
+  EXPECT_EQ(merge_message(merge).rfind("merge: cases missing, the folders of these shards were not given: shard 1/3: "
+                                       "case-0002, case-0005 (2 cases)", 0), 0u) << merge_message(merge);
+  EXPECT_FALSE(fs::exists(merge.output));
+  merge.dirs = {dirs[0], dirs[1], dirs[2], dirs[1]};
+  EXPECT_NE(merge_message(merge).find("given twice"), std::string::npos);
+  options.dir = fs::path(root) / "other-config";
+  options.shard = Shard{1, 3};
+  options.base_overrides.push_back("surface.depth_fraction=0.03");
+  run_sweep(axes, options);
+  merge.dirs = {dirs[0], options.dir, dirs[2]};
+  EXPECT_NE(merge_message(merge).find("another configuration (surface.depth_fraction = 0.02 in "), std::string::npos)
+      << merge_message(merge);
+  options.base_overrides.pop_back();
+  options.dir = fs::path(root) / "other-grid";
+  run_sweep({parse_sweep_axis("hub.speed_rpm=550,2000"), parse_sweep_axis("surface.friction=0.1,0.4,0.7")}, options);
+  merge.dirs = {dirs[0], options.dir, dirs[2]};
+  EXPECT_NE(merge_message(merge).find("another grid"), std::string::npos) << merge_message(merge);
+  fs::copy(dirs[1], fs::path(root) / "killed", fs::copy_options::recursive);
+  fs::remove(fs::path(root) / "killed" / "sweep.csv");
+  merge.dirs = {dirs[0], fs::path(root) / "killed", dirs[2]};
+  EXPECT_NE(merge_message(merge).find("no sweep.csv: its sweep (shard 1/3) has not finished"), std::string::npos);
+  fs::create_directories(merge.output);
+  std::ofstream(merge.output / "notes.txt") << "mine";
+  merge.dirs = dirs;
+  EXPECT_NE(merge_message(merge).find("the folder exists and holds files"), std::string::npos);
+  EXPECT_EQ(slurp(merge.output / "notes.txt"), "mine");
+  fs::remove(merge.output / "notes.txt");
+
+  // Merged into the empty folder: the unsharded sweep's index, but the wall times.
+  const MergeReport merged = merge_sweeps(merge);
+  EXPECT_EQ(merged.shards, 3);
+  EXPECT_EQ(merged.linked_files + merged.copied_files, 6u * 4u);
+  const auto without_wall_time = [](const std::string& csv) {
+    std::string out;
+    std::istringstream in(csv);
+    for (std::string line; std::getline(in, line);) out += line.substr(0, line.rfind(',', line.rfind(',') - 1)) + "\n";
+    return out;
+  };
+  EXPECT_EQ(without_wall_time(slurp(merge.output / "sweep.csv")), without_wall_time(slurp(fs::path(root) / "whole" / "sweep.csv")));
+  for (const SweepCase& c : whole.cases) EXPECT_TRUE(complete_run_folder(merge.output / c.folder)) << c.folder;
+  options.dir = merge.output;
+  options.shard = Shard{};
+  const SweepReport resumed = run_sweep(axes, options);
+  EXPECT_EQ(resumed.resumed, 6);
+  EXPECT_EQ(resumed.ran, 0);
+
+  // A stop removes what the merge wrote.
+  StopToken stop;
+  stop.request_stop();
+  merge.stop = &stop;
+  merge.output = fs::path(root) / "stopped";
+  EXPECT_TRUE(merge_sweeps(merge).interrupted);
+  EXPECT_FALSE(fs::exists(merge.output));
+  fs::remove_all(root);
 }

@@ -1,11 +1,14 @@
-// `rotbeam sweep`: a Cartesian grid of cases, in parallel, resumable (issue: studies).
+// `rotbeam sweep`: a Cartesian grid of cases, in parallel, resumable (issue: studies), or a shard
+// of it (--shard I/N); `rotbeam merge`: the shards' folders combined into one sweep (issue 20).
 #include "commands.hpp"
 #include "common.hpp"
+#include "python_bridge.hpp"
 
 #include "rotbeam/sweep.hpp"
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <unistd.h>
@@ -20,18 +23,51 @@ struct SweepCommandOptions {
   std::string output_dir;
   int jobs = 0;
   bool quiet = false;
+  std::string shard;            // "I/N", "" for the whole grid
+  std::string format = "csv";   // csv | netcdf
 };
+
+constexpr const char* kNetcdfWriter = "the netCDF writer";
+
+// Whether `--format` asks for sweep.nc (checked: csv or netcdf).
+bool wants_netcdf(const std::string& format) {
+  if (format != "csv" && format != "netcdf")
+    throw ConfigError("--format " + path_text(format) + ": must be csv (sweep.csv) or netcdf (sweep.nc beside sweep.csv)");
+  return format == "netcdf";
+}
+
+// Before any work: the Python that writes sweep.nc can (xarray and netCDF4 import). Its module
+// says what is missing on one line; exit 2 then, with nothing run.
+void check_netcdf_writer() {
+  const int code = run_python_module("rotbeam.netcdf", {"--check"}, kNetcdfWriter);
+  if (code == kInterrupted) throw ConfigError("--format netcdf: interrupted while checking the netCDF writer");
+  if (code != 0) throw ConfigError("--format netcdf: sweep.nc cannot be written here (above: why); use --format csv");
+}
+
+// The hook that writes DIR/sweep.nc from the finished index (sweep.csv's text in `csv`), before
+// sweep.csv itself: rotbeam.netcdf through Python. `code` gets the module's exit code.
+BeforeIndex netcdf_writer(const std::string& dir, int& code) {
+  return [dir, &code](const std::filesystem::path& csv) {
+    code = run_python_module("rotbeam.netcdf", {dir, "--index", csv.string()}, kNetcdfWriter);
+    if (code != 0) throw std::runtime_error("sweep.nc not written");
+  };
+}
 
 int run_sweep_command(const SweepCommandOptions& o) {
   if (o.vary.empty()) throw ConfigError("--vary: give at least one KEY=V1,V2,… or KEY=A:B:N");
   if (o.jobs < 0) throw ConfigError("--jobs " + std::to_string(o.jobs) + ": must be >= 0");
   std::vector<SweepAxis> axes;
   for (const std::string& spec : o.vary) axes.push_back(parse_sweep_axis(spec));
+  const bool netcdf = wants_netcdf(o.format);
   SweepOptions options;
   options.config_path = o.case_options.config_path;
   options.base_overrides = o.case_options.overrides;
   options.dir = o.output_dir;
   options.jobs = o.jobs;
+  if (!o.shard.empty()) options.shard = parse_shard(o.shard);
+  if (netcdf) check_netcdf_writer();
+  int netcdf_code = 0;
+  if (netcdf) options.before_index = netcdf_writer(o.output_dir, netcdf_code);
   const bool terminal = !o.quiet && isatty(STDERR_FILENO), quiet = o.quiet;
   auto line = std::make_unique<LiveLine>(terminal);
   line->set([](double e) { return "cases under way, " + duration_text(e) + " elapsed"; });
@@ -65,17 +101,24 @@ int run_sweep_command(const SweepCommandOptions& o) {
   const auto counted = [](std::size_t n, const std::string& word) {
     return std::to_string(n) + " " + word + (n == 1 ? "" : "s");
   };
+  const std::string shard_text = std::to_string(r.shard.index) + "/" + std::to_string(r.shard.count);
+  if (r.shard.count > 1) std::cout << "shard " << shard_text << " of a grid of " << counted(r.grid_cases, "case") << ", ";
   std::cout << counted(r.cases.size(), "case") << ": " << r.ran << " run, " << r.resumed << " already done; " << r.failed
             << " stopped on a diagnosed failure, " << counted(r.errors, "error") << ", " << r.interrupted << " interrupted\n";
   for (std::size_t i = 0; i < r.cases.size(); ++i)
     if (r.results[i].status == SweepStatus::failed || r.results[i].status == SweepStatus::error)
       std::cout << "  " << r.cases[i].folder << " " << sweep_status_name(r.results[i].status) << ": "
                 << printable(r.results[i].message) << "\n";
-  std::cout << "wrote " << path_text((options.dir / "sweep.csv").string()) << " and a folder per case\n";
+  const bool wrote_netcdf = netcdf && r.interrupted == 0 && r.index_error.empty();
+  std::cout << "wrote " << path_text((options.dir / "sweep.csv").string())
+            << (wrote_netcdf ? ", " + path_text((options.dir / "sweep.nc").string()) : std::string()) << " and a folder per case\n";
+  if (r.shard.count > 1)
+    std::cout << "merge the shards' folders when all have finished: rotbeam merge DIR… -o OUT\n";
   if (r.other_case_folders > 0)
     std::cout << counted(static_cast<std::size_t>(r.other_case_folders), "case folder") << " in "
               << path_text(options.dir.string()) << (r.other_case_folders == 1 ? " is" : " are")
-              << " not in this grid (an earlier sweep's: kept, not in sweep.csv)\n";
+              << (r.shard.count > 1 ? " not in this shard (an earlier sweep's: kept, not in sweep.csv)\n"
+                                    : " not in this grid (an earlier sweep's: kept, not in sweep.csv)\n");
   if (r.interrupted > 0) {
     print_error("sweep interrupted: " + counted(r.interrupted, "case") + " not finished; run the same command again to resume");
     return kInterrupted;
@@ -85,6 +128,68 @@ int run_sweep_command(const SweepCommandOptions& o) {
                 " could not be run or written (status `error` in sweep.csv); run the same command again to retry them");
     return kRuntimeFailure;
   }
+  if (!r.index_error.empty()) {
+    if (netcdf_code == kInterrupted) {
+      print_error("interrupted while writing sweep.nc: every case is done and sweep.csv written; run the same command "
+                  "again to write sweep.nc");
+      return kInterrupted;
+    }
+    print_error("sweep.nc was not written (above: why); every case is done and sweep.csv written");
+    return kRuntimeFailure;
+  }
+  return kSuccess;
+}
+
+struct MergeCommandOptions {
+  std::vector<std::string> dirs;
+  std::string output_dir;
+  std::string format = "csv";
+  bool quiet = false;
+};
+
+int run_merge_command(const MergeCommandOptions& o) {
+  const bool netcdf = wants_netcdf(o.format);
+  MergeOptions options;
+  for (const std::string& d : o.dirs) options.dirs.emplace_back(d);
+  options.output = o.output_dir;
+  if (netcdf) check_netcdf_writer();
+  int netcdf_code = 0;
+  if (netcdf) options.before_index = netcdf_writer(o.output_dir, netcdf_code);
+  const bool terminal = !o.quiet && isatty(STDERR_FILENO);
+  auto line = std::make_unique<LiveLine>(terminal);
+  options.on_case = [&line](std::size_t done, std::size_t total) {
+    line->set([=](double e) {
+      return "merge: " + std::to_string(done) + "/" + std::to_string(total) + " case folders, " + duration_text(e) + " elapsed";
+    });
+  };
+  install_interrupt_handlers();
+  options.stop = &interrupt_token();
+  MergeReport r;
+  try {
+    r = merge_sweeps(options);
+  } catch (const std::runtime_error& e) {
+    line.reset();
+    if (netcdf_code == kInterrupted) {
+      print_error("merge interrupted while writing sweep.nc: nothing written (" + path_text(o.output_dir) + " removed)");
+      return kInterrupted;
+    }
+    if (netcdf_code != 0) {
+      print_error("merge: sweep.nc could not be written (above: why); nothing written");
+      return kRuntimeFailure;
+    }
+    throw;
+  }
+  line.reset();
+  if (r.interrupted) {
+    print_error("merge interrupted: nothing written (" + path_text(o.output_dir) + " removed)");
+    return kInterrupted;
+  }
+  const SweepReport& s = r.sweep;
+  std::cout << "merged " << r.shards << (r.shards == 1 ? " shard: " : " shards: ") << s.cases.size()
+            << (s.cases.size() == 1 ? " case (" : " cases (") << s.failed << " stopped on a diagnosed failure)\n";
+  std::cout << "wrote " << path_text((std::filesystem::path(o.output_dir) / "sweep.csv").string())
+            << (netcdf ? ", " + path_text((std::filesystem::path(o.output_dir) / "sweep.nc").string()) : std::string())
+            << " and a folder per case (" << r.linked_files << " files linked, " << r.copied_files << " copied)\n";
   return kSuccess;
 }
 
@@ -101,7 +206,23 @@ Command add_sweep_command(CLI::App& app) {
   sub->add_option("--jobs", opts->jobs, "Threads (default: all cores)");
   sub->add_flag("--quiet", opts->quiet,
                 "No progress on stderr (otherwise a redrawn line on a terminal, a line per finished case elsewhere)");
+  sub->add_option("--shard", opts->shard,
+                  "Run only shard I of N (I counted from 0: the cases whose index mod N is I), e.g. "
+                  "--shard $SLURM_ARRAY_TASK_ID/8; combine the shards' folders with `rotbeam merge`");
+  sub->add_option("--format", opts->format,
+                  "csv (default): sweep.csv; netcdf: also sweep.nc (netCDF4, through Python's xarray)");
   return [opts] { return run_sweep_command(*opts); };
+}
+
+Command add_merge_command(CLI::App& app) {
+  auto opts = std::make_shared<MergeCommandOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "merge", "Combine the folders of a sweep's shards (sweep --shard I/N) into one sweep folder: sweep.csv, a folder per case");
+  sub->add_option("folders", opts->dirs, "The shards' folders, one per shard 0…N-1")->required()->check(non_empty_path());
+  sub->add_option("-o,--output", opts->output_dir, "The merged sweep's folder (new, or empty)")->required()->check(non_empty_path());
+  sub->add_option("--format", opts->format, "csv (default): sweep.csv; netcdf: also sweep.nc");
+  sub->add_flag("--quiet", opts->quiet, "No progress line on stderr");
+  return [opts] { return run_merge_command(*opts); };
 }
 
 }  // namespace rotbeam::cli

@@ -13,6 +13,7 @@ Command add_impact_command(CLI::App& app);
 Command add_run_command(CLI::App& app);
 Command add_converge_command(CLI::App& app);
 Command add_sweep_command(CLI::App& app);
+Command add_merge_command(CLI::App& app);
 Command add_plot_command(CLI::App& app);
 Command add_animate_command(CLI::App& app);
 Command add_reproduce_command(CLI::App& app);

@@ -2,6 +2,8 @@
 #include "commands.hpp"
 #include "common.hpp"
 
+#include "rotbeam/version.hpp"
+
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
@@ -34,22 +36,23 @@ int main(int argc, char** argv) {
                "(assumed modes, momentum-balance impacts, Lagrange-multiplier contact with Coulomb friction)"};
   app.name("rotbeam");
   app.require_subcommand(1);
-  app.set_version_flag("--version", "rotbeam 0.1.0");
+  app.set_version_flag("--version", std::string("rotbeam ") + rotbeam::kVersion);
   Command modes = add_modes_command(app);
   Command impact = add_impact_command(app);
   Command run = add_run_command(app);
   Command converge = add_converge_command(app);
   Command sweep = add_sweep_command(app);
+  Command merge = add_merge_command(app);
   Command plot = add_plot_command(app);
   Command animate = add_animate_command(app);
   Command reproduce = add_reproduce_command(app);
   Command brush = add_brush_command(app);
   if (argc > 1 && argv[1][0] != '-' && std::string(argv[1]) != "modes" && std::string(argv[1]) != "impact" &&
       std::string(argv[1]) != "run" && std::string(argv[1]) != "converge" &&
-      std::string(argv[1]) != "sweep" && std::string(argv[1]) != "brush" &&
+      std::string(argv[1]) != "sweep" && std::string(argv[1]) != "merge" && std::string(argv[1]) != "brush" &&
       std::string(argv[1]) != "plot" && std::string(argv[1]) != "animate" &&
       std::string(argv[1]) != "reproduce") {
-    print_error("unknown command '" + std::string(argv[1]) + "' (commands: run, sweep, brush, plot, animate, reproduce, converge, impact, modes; see rotbeam --help)");
+    print_error("unknown command '" + std::string(argv[1]) + "' (commands: run, sweep, merge, brush, plot, animate, reproduce, converge, impact, modes; see rotbeam --help)");
     return kBadInput;
   }
   const int code = [&]() -> int {
@@ -71,6 +74,7 @@ int main(int argc, char** argv) {
       if (app.got_subcommand("run")) return run();
       if (app.got_subcommand("converge")) return converge();
       if (app.got_subcommand("sweep")) return sweep();
+      if (app.got_subcommand("merge")) return merge();
       if (app.got_subcommand("plot")) return plot();
       if (app.got_subcommand("animate")) return animate();
       if (app.got_subcommand("reproduce")) return reproduce();

@@ -65,7 +65,7 @@ std::string signal_name(int signal) {
 
 }  // namespace
 
-int run_python_module(const std::string& module, const std::vector<std::string>& args) {
+int run_python_module(const std::string& module, const std::vector<std::string>& args, const std::string& what) {
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   std::string python_path;
@@ -88,7 +88,7 @@ int run_python_module(const std::string& module, const std::vector<std::string>&
   // (ROTBEAM_PYTHON=/bin/true, /bin/sh) writes nothing, and its exit code is never taken as ours.
   int report[2] = {-1, -1};
   if (::pipe2(report, O_CLOEXEC) != 0) {
-    print_error(std::string("cannot run the plotting module: no pipe (") + std::strerror(errno) + ")");
+    print_error("cannot run " + what + ": no pipe (" + std::strerror(errno) + ")");
     return kRuntimeFailure;
   }
   ::fcntl(report[0], F_SETFL, O_NONBLOCK);
@@ -135,14 +135,16 @@ int run_python_module(const std::string& module, const std::vector<std::string>&
   if (at != std::string::npos) result = std::atoi(said.c_str() + at + 7);
   // An interrupt that arrived after the module finished its work changes nothing.
   if (g_forwarded != 0 && !(WIFEXITED(status) && WEXITSTATUS(status) == 0)) {
-    print_error("interrupted while drawing: the files written so far are whole, the rest are missing");
+    print_error(what == "the plotting module"
+                    ? "interrupted while drawing: the files written so far are whole, the rest are missing"
+                    : "interrupted while " + what + " ran: it wrote nothing under its file's name");
     return kInterrupted;
   }
   const std::string how = WIFSIGNALED(status) ? std::string("killed by signal ") + std::to_string(WTERMSIG(status)) +
                                                      " (" + signal_name(WTERMSIG(status)) + ")"
                                               : "exit " + std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1);
   if (pid < 0 || !started) {
-    print_error(std::string("cannot run the plotting module: ") + python + " -m " + module + " did not start it (" +
+    print_error("cannot run " + what + ": " + python + " -m " + module + " did not start it (" +
                 (pid < 0 ? std::string("no process") : how) +
                 (std::getenv("ROTBEAM_PYTHON") ? std::string(", ROTBEAM_PYTHON=") + python : std::string()) +
                 "; needs Python 3 with numpy and matplotlib, and the rotbeam package; set ROTBEAM_PYTHON / "
@@ -150,7 +152,7 @@ int run_python_module(const std::string& module, const std::vector<std::string>&
     return kRuntimeFailure;
   }
   if (result < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != result) {
-    print_error("the plotting module " + module + " stopped before it finished (" + how + ")");
+    print_error(what + " " + module + " stopped before it finished (" + how + ")");
     return kRuntimeFailure;
   }
   // The module's codes are rotbeam's (0, 1, 2 damaged input, 130); any other is a failure.

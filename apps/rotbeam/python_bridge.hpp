@@ -1,4 +1,5 @@
-// Running the Python plotting module (rotbeam.plots) from the command line.
+// Running the Python package's modules from the command line: the pictures (rotbeam.plots,
+// rotbeam.animate, rotbeam.reproduce) and a sweep's netCDF file (rotbeam.netcdf).
 #pragma once
 
 #include <string>
@@ -11,8 +12,9 @@ namespace rotbeam::cli {
 /// ROTBEAM_PYTHONPATH. PYTHON is ROTBEAM_PYTHON, else the interpreter the module was built for.
 /// Returns the exit code the module announced on its result pipe (0, 1, 2 or 130); 1, with one line
 /// on stderr, when PYTHON did not start the module or it stopped without announcing one (a crash, a
-/// signal): a child's own exit code is never passed on.
-int run_python_module(const std::string& module, const std::vector<std::string>& args);
+/// signal): a child's own exit code is never passed on. `what` names the module in those messages.
+int run_python_module(const std::string& module, const std::vector<std::string>& args,
+                      const std::string& what = "the plotting module");
 
 /// run_python_module("rotbeam.plots", args).
 inline int run_python_plots(const std::vector<std::string>& args) { return run_python_module("rotbeam.plots", args); }

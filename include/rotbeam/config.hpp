@@ -62,6 +62,11 @@ Config load_config(const std::optional<std::string>& path, const std::vector<std
 Config load_config_values(const std::optional<std::string>& path,
                           const std::vector<std::pair<std::string, std::string>>& values);
 
+/// Same as load_config_values, from the TOML text of a file that `name` names in messages as its
+/// path would be named (a sweep's cases on another machine, where the path may not exist).
+Config load_config_text_values(const std::string& toml_text, const std::string& name,
+                               const std::vector<std::pair<std::string, std::string>>& values);
+
 /// Same, from TOML text (for tests and the Python layer).
 Config load_config_string(const std::string& toml_text, const std::vector<std::string>& overrides);
 

@@ -7,13 +7,20 @@
     r.summary["last_separation_deg"], r.history["normal_force_n"], r.events[0]["kind"]
     rotbeam.impact(overrides={"initial.modal_velocity": [2, 0, 0, 0, 0]})["vx_before_m_s"]
     rotbeam.modes(speeds_rpm=[0, 1000, 3000])["frequencies_hz"]
+    r.to_xarray()                                       # the pass as an xarray Dataset over t, units in attributes
+    ds = rotbeam.sweep({"hub.speed_rpm": [550, 3000], "surface.friction": "0.1:0.7:4"})   # a Dataset over the keys
+    ds = rotbeam.sweep({...}, client=dask.distributed.Client(...))                      # the same, on a Dask cluster
+    rotbeam.open_sweep("out/grid")                      # a `rotbeam sweep` folder's Dataset (sweep.csv)
 
 `config` is a TOML file's path, a dict shaped like the TOML file ({"section": {"key": value}}), or
 None for the defaults; `overrides` maps dotted keys ("section.key") to values, applied after it,
 exactly like the command line's --set. Keys, defaults and units: docs/configuration.md. Bad input
 raises rotbeam.ConfigError (a ValueError) with the command line's one-line message. The C++ work
-runs with the GIL released, so threads can run cases concurrently.
+runs with the GIL released, so threads can run cases concurrently. docs/python.md says more;
+help(rotbeam.run), help(rotbeam.sweep) each function.
 """
+
+from __future__ import annotations
 
 import errno
 import math
@@ -38,11 +45,24 @@ except ImportError:
         sys.exit(1)
     raise ImportError(_hint, name=__name__) from None
 
+from typing import TYPE_CHECKING, Any, Callable, Mapping, Optional, Sequence, Union
+
 from ._core import ConfigError, config_keys
 from . import _core
 
-__all__ = ["run", "impact", "modes", "brush", "Result", "BrushResult", "ConfigError", "ConfigFileNotFoundError",
-           "config_keys"]
+if TYPE_CHECKING:  # only for the annotations: xarray is imported when a Dataset is made
+    import xarray
+
+__version__: str = _core.__version__
+"""rotbeam's version (project(VERSION) in CMakeLists.txt, the one place it is set)."""
+
+__all__ = ["run", "impact", "modes", "brush", "sweep", "open_sweep", "Result", "BrushResult", "ConfigError",
+           "ConfigFileNotFoundError", "config_keys", "__version__"]
+
+# What `config` may be: a TOML file's path, a dict shaped like the file, or None for the defaults.
+ConfigLike = Union[str, "os.PathLike[str]", Mapping[str, Mapping[str, Any]], None]
+# What `overrides` may be: {"section.key": value}, applied after `config` as --set is.
+Overrides = Optional[Mapping[str, Any]]
 
 
 _EMPTY_PATH = '""'  # how a message shows the empty path
@@ -185,7 +205,15 @@ class Result:
     events hold the last `output.history_revolutions` revolutions, as the files do; `revolutions`
     holds every one."""
 
-    def __init__(self, summary, history, events, revolutions=None, force_bins=None):
+    summary: dict[str, Any]
+    history: dict[str, "numpy.ndarray"]
+    events: list[dict[str, Any]]
+    revolutions: dict[str, "numpy.ndarray"]
+    force_bins: dict[str, "numpy.ndarray"]
+
+    def __init__(self, summary: dict[str, Any], history: dict[str, "numpy.ndarray"], events: list[dict[str, Any]],
+                 revolutions: dict[str, "numpy.ndarray"] | None = None,
+                 force_bins: dict[str, "numpy.ndarray"] | None = None):
         self.summary = summary
         self.history = history
         self.events = events
@@ -193,9 +221,21 @@ class Result:
         self.force_bins = force_bins if force_bins is not None else {}
 
     @property
-    def failure(self):
+    def failure(self) -> dict[str, Any] | None:
         """None, or {kind, t_s, theta_deg, message} when the pass stopped on a diagnosed failure."""
         return self.summary.get("failure")
+
+    def to_xarray(self) -> "xarray.Dataset":
+        """The pass as an xarray Dataset (needs xarray): the history over the dimension `t` (the
+        coordinate, in s), each other column of history.csv a variable with its `units` attribute
+        ("N", "m s-1", "degree"; "1" for pure numbers); the events as a table over `event`
+        (`event_t_s`, `event_kind`, …, the columns of events.csv); the revolutions over `revolution`
+        (`revolution_<column>`, runs over many revolutions) and the force bins over `bin`
+        (`bin_<column>`). Attributes: `summary` and `configuration` (the resolved configuration) as
+        JSON text, `failure` (JSON: null or the failure), `rotbeam_version`. `ds.to_netcdf(path)`
+        writes it (with netCDF4); `ds["normal_force_n"].to_pandas()` is a pandas Series over t."""
+        from ._xarray import result_dataset
+        return result_dataset(self, __version__)
 
     def __repr__(self):
         s = self.summary
@@ -204,10 +244,27 @@ class Result:
                 f"{', failure: ' + s['failure']['kind'] if s.get('failure') else ''}>")
 
 
-def run(config=None, overrides=None):
-    """A whole pass (`rotbeam run`). Returns a Result; a diagnosed numerical failure is reported in
-    Result.failure with everything computed up to it. Ctrl-C stops the pass within a step and
-    raises KeyboardInterrupt."""
+def run(config: ConfigLike = None, overrides: Overrides = None) -> Result:
+    """A whole pass of the filament (`rotbeam run`): free flight, impacts, sustained contact with
+    Coulomb friction, separations, from θ0 = −90° to simulation.end_angle_deg (or over
+    simulation.revolutions revolutions).
+
+    config: a TOML file's path, a dict shaped like the file ({"hub": {"speed_rpm": 3000}}), or None
+        for the defaults (the thesis's base case: 550 rpm, 2 % depth, μ = 0.4, 5 modes).
+    overrides: {"section.key": value} applied after config, as the command line's --set.
+
+    Returns a Result: .summary (the keys of summary.json: impacts, contact_episodes,
+    last_separation_deg, peak_normal_force_n, …), .history (numpy arrays by the columns of
+    history.csv), .events (dicts, the rows of events.csv), .revolutions, .force_bins, .failure, and
+    .to_xarray() (an xarray Dataset over t with units). A diagnosed numerical failure (Painlevé's
+    paradox, a step-size underflow, …) is not an exception: Result.failure describes it and the
+    history holds everything up to it. Bad input raises ConfigError with the command line's
+    one-line message. Ctrl-C stops the pass within a step and raises KeyboardInterrupt. The work
+    runs with the GIL released.
+
+    >>> r = rotbeam.run(overrides={"hub.speed_rpm": 3000})
+    >>> r.summary["impacts"], r.history["normal_force_n"].max()
+    """
     path, sets = _arguments(config, overrides)
     summary, history, events, revolutions, force_bins = _core.run(path, sets)
     return Result(summary, history, events, _table_arrays(revolutions), _table_arrays(force_bins))
@@ -221,14 +278,20 @@ class BrushResult:
     arrays by the columns of filaments.csv, one entry per filament). The tables are dicts of
     equal-length arrays: pandas.DataFrame(r.workpiece) makes a data frame of one."""
 
-    def __init__(self, summary, workpiece, profile, filaments):
+    summary: dict[str, Any]
+    workpiece: dict[str, "numpy.ndarray"]
+    profile: dict[str, "numpy.ndarray"]
+    filaments: dict[str, "numpy.ndarray"]
+
+    def __init__(self, summary: dict[str, Any], workpiece: dict[str, "numpy.ndarray"], profile: dict[str, "numpy.ndarray"],
+                 filaments: dict[str, "numpy.ndarray"]):
         self.summary = summary
         self.workpiece = workpiece
         self.profile = profile
         self.filaments = filaments
 
     @property
-    def failure(self):
+    def failure(self) -> dict[str, Any] | None:
         """None, or {kind, filament, t_s, theta_deg, message} of the first filament that failed."""
         return self.summary.get("failure")
 
@@ -240,12 +303,13 @@ class BrushResult:
                 f"{', failure: ' + s['failure']['kind'] if s.get('failure') else ''}>")
 
 
-def brush(config=None, overrides=None, jobs=0):
-    """A brush (`rotbeam brush`): every distinct filament run to its periodic steady state on `jobs`
-    threads (0: all cores), and the sum on the workpiece. The configuration needs the [brush] keys,
-    e.g. overrides={"brush.filaments": 24, "beam.damping_ratio": 0.05}. Returns a BrushResult; a
-    filament's numerical failure is reported in BrushResult.failure (the sums hold the others).
-    Ctrl-C stops the filaments under way and raises KeyboardInterrupt."""
+def brush(config: ConfigLike = None, overrides: Overrides = None, jobs: int = 0) -> BrushResult:
+    """A brush (`rotbeam brush`, docs/brush.md): every distinct filament run to its periodic steady
+    state on `jobs` threads (0: all cores), and the sum on the workpiece. The configuration needs the
+    [brush] keys, e.g. overrides={"brush.filaments": 24, "beam.damping_ratio": 0.05}; config and
+    overrides as for run(). Returns a BrushResult (.summary, .workpiece, .profile, .filaments as
+    numpy arrays); a filament's numerical failure is reported in BrushResult.failure (the sums hold
+    the others). Ctrl-C stops the filaments under way and raises KeyboardInterrupt."""
     if isinstance(jobs, bool) or not isinstance(jobs, int):
         raise TypeError(f"jobs must be a whole number of threads (0: all cores), not {jobs!r}")
     path, sets = _arguments(config, overrides)
@@ -256,14 +320,15 @@ def brush(config=None, overrides=None, jobs=0):
                                                       "revolutions_run"), bools=("reaches",), words=("status",)))
 
 
-def impact(config=None, overrides=None):
-    """The first impact (`rotbeam impact --json`) as a dict, or None if the tip never reaches the
-    surface before the end angle."""
+def impact(config: ConfigLike = None, overrides: Overrides = None) -> dict[str, Any] | None:
+    """The first impact of a pass (`rotbeam impact --json`, thesis Table 5-3) as a dict (t_s,
+    theta_deg, vx_before_m_s, vx_after_m_s, impulse_n_s, …, config), or None if the tip never
+    reaches the surface before the end angle. config and overrides as for run()."""
     path, sets = _arguments(config, overrides)
     return _core.impact(path, sets)
 
 
-def _speeds(speeds_rpm):
+def _speeds(speeds_rpm: Any) -> list[float]:
     """The speeds as a list of floats: one number or an iterable of numbers (not a string)."""
     if isinstance(speeds_rpm, (str, bytes)):
         raise ConfigError(f"speeds_rpm = {speeds_rpm!r}: give numbers (e.g. [550, 3000]), not a string")
@@ -280,10 +345,59 @@ def _speeds(speeds_rpm):
     return out
 
 
-def modes(config=None, overrides=None, speeds_rpm=None):
-    """Natural frequencies versus hub speed (`rotbeam modes --json`):
-    {"speeds_rpm": array (S,), "frequencies_hz": array (S, n)}. Default speeds: 0, the Table 5-2
-    speeds and the case's own."""
+def modes(config: ConfigLike = None, overrides: Overrides = None,
+          speeds_rpm: float | Sequence[float] | None = None) -> dict[str, "numpy.ndarray"]:
+    """Natural frequencies of the spinning filament versus hub speed, linearised about the straight
+    beam (`rotbeam modes --json`): {"speeds_rpm": array (S,), "frequencies_hz": array (S, n)}.
+    speeds_rpm: one speed or a list (None: 0, the Table 5-2 speeds and the case's own)."""
     path, sets = _arguments(config, overrides)
     speeds, freq = _core.modes(path, sets, None if speeds_rpm is None else _speeds(speeds_rpm))
     return {"speeds_rpm": speeds, "frequencies_hz": freq}
+
+
+def sweep(vary: Mapping[str, Any], config: ConfigLike = None, overrides: Overrides = None, *, jobs: int = 0,
+          client: Any = None, retries: int = 2,
+          progress: bool | Callable[[int, int], Any] | None = None) -> "xarray.Dataset":
+    """A Cartesian grid of cases (`rotbeam sweep`), run in memory, as an xarray Dataset over the
+    swept keys (needs xarray).
+
+    vary: {"section.key": values}, one dimension per key in this order (the last varies fastest,
+        as `rotbeam sweep`'s cases): values a list of Python values ([550, 1000]), or a string in
+        --vary syntax ("550,1000", "0.1:0.7:4": 4 values from 0.1 to 0.7).
+    config, overrides: the base case, as for run(); every case is validated before any runs
+        (ConfigError naming the case and its values).
+    jobs: threads on this machine (0: all cores), when client is None.
+    client: a dask.distributed.Client: the cases run on its cluster, bundled so that a task runs
+        about 0.5 s (at least 0.1 s; sized from a first task of 8 cases), each task retried
+        `retries` times when it raises; a worker that dies has its tasks rescheduled, and finished
+        cases are kept.
+    progress: a callable progress(finished, total), True for a line on stderr, False for nothing;
+        None (default): the line when stderr is a terminal.
+
+    Returns a Dataset with a variable per metric of sweep.csv (impacts, contact_episodes,
+    last_separation_deg, peak_normal_force_n, normal_impulse_n_s, …; float64 with a `units`
+    attribute, NaN where a case has no result), `status` (done; failed: a diagnosed numerical
+    failure; error; interrupted), `message` and `case` (the case number, as the CLI's folders);
+    attributes: rotbeam_version, configuration (the resolved configuration the cases share, JSON),
+    varying_keys, kind. Threads, Dask, and `rotbeam sweep --shard` plus `rotbeam merge`
+    (rotbeam.open_sweep, sweep.nc) give identical Datasets but for wall_time_s (the machine's).
+    ds.to_dataframe() is the pandas view (a row per case, indexed by the swept keys);
+    ds.to_netcdf("sweep.nc") writes it. Ctrl-C stops the cases under way and raises
+    KeyboardInterrupt (on Dask: the tasks are cancelled).
+
+    >>> ds = rotbeam.sweep({"hub.speed_rpm": [550, 1000, 2000, 3000], "surface.friction": [0.1, 0.4]},
+    ...                    overrides={"beam.modes": 3})
+    >>> ds["impacts"].sel({"hub.speed_rpm": 3000})
+    """
+    from . import _sweep
+    return _sweep.sweep(vary, config, overrides, jobs=jobs, client=client, retries=retries, progress=progress,
+                        arguments=_arguments, toml_value=_toml_value)
+
+
+def open_sweep(folder: Union[str, "os.PathLike[str]"]) -> "xarray.Dataset":
+    """The Dataset of a `rotbeam sweep` (or `rotbeam merge`) folder, from its sweep.json and
+    sweep.csv: the same Dataset as sweep() of that grid and as the folder's sweep.nc (a shard's
+    folder: the other shards' cases `missing`). Raises FileNotFoundError for a folder without
+    them, ValueError for damaged ones."""
+    from . import _sweep
+    return _sweep.open_sweep(folder)

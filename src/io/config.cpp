@@ -935,6 +935,19 @@ Config load_config_values(const std::optional<std::string>& path,
   return resolve(root, values);
 }
 
+Config load_config_text_values(const std::string& toml_text, const std::string& name,
+                               const std::vector<std::pair<std::string, std::string>>& values) {
+  toml::table root;
+  try {
+    root = toml::parse(toml_text, name);
+  } catch (const toml::parse_error& e) {
+    throw ConfigError((name.empty() ? std::string("\"\"") : printable(name)) + ":" +
+                      std::to_string(e.source().begin.line) + ":" + std::to_string(e.source().begin.column) +
+                      ": TOML syntax error: " + printable(std::string(e.description())));
+  }
+  return resolve(root, values);
+}
+
 namespace {
 // A JSON value of Config::to_json as the TOML node it was read from.
 void insert_json(toml::table& table, const std::string& key, const nlohmann::json& v) {

@@ -9,6 +9,7 @@
 #include "rotbeam/detail/csv.hpp"
 #include "rotbeam/detail/parse.hpp"
 #include "rotbeam/pass_output.hpp"
+#include "rotbeam/version.hpp"
 
 #include <optional>
 #include <span>
@@ -16,8 +17,10 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <mutex>
 #include <set>
+#include <unistd.h>
 
 namespace rotbeam {
 
@@ -65,52 +68,118 @@ std::string number_literal(double v) {
   return s;
 }
 
-// sweep.csv's metric columns and where each sits in summary.json.
-struct Metric {
-  const char* column;
-  const char* pointer;
-};
-const Metric kMetrics[] = {{"impacts", "/impacts"},
-                           {"contact_episodes", "/contact_episodes"},
-                           {"first_impact_deg", "/first_impact_deg"},
-                           {"last_separation_deg", "/last_separation_deg"},
-                           {"contact_time_s", "/contact_time_s"},
-                           {"peak_normal_force_n", "/peak_normal_force_n"},
-                           {"mean_normal_force_n", "/mean_normal_force_n"},
-                           {"normal_impulse_n_s", "/normal_impulse_n_s"},
-                           {"binned_peak_normal_force_n", "/binned_force/peak_normal_force_n"},
-                           {"friction_work_j", "/friction_work_j"},
-                           {"max_tip_deflection_ratio", "/max_tip_deflection_ratio"},
-                           {"energy_audit_residual", "/energy_audit_residual"},
-                           // The last complete revolution of a run over revolutions (the steady one):
-                           // what a rub map reads (docs/surfaces.md).
-                           {"last_revolution_impacts", "/last_revolution/impacts"},
-                           {"last_revolution_peak_normal_force_n", "/last_revolution/peak_normal_force_n"},
-                           {"last_revolution_normal_impulse_n_s", "/last_revolution/normal_impulse_n_s"},
-                           {"last_revolution_friction_work_j", "/last_revolution/friction_work_j"},
-                           {"last_revolution_max_tip_deflection_ratio", "/last_revolution/max_tip_deflection_ratio"},
-                           {"steady_after_revolutions", "/steady_state/after_revolutions"},
-                           {"f1_hz", "/natural_frequencies_hz/0"},
-                           {"f2_hz", "/natural_frequencies_hz/1"},
-                           {"f3_hz", "/natural_frequencies_hz/2"},
-                           {"steps", "/steps"},
-                           {"rhs_evaluations", "/rhs_evaluations"},
-                           {"wall_time_s", "/wall_time_s"}};
+// sweep.csv's metric columns: where each sits in summary.json, its units, what it is.
+const SweepMetric kMetrics[] = {
+    {"impacts", "/impacts", "1", "momentum-balance impacts"},
+    {"contact_episodes", "/contact_episodes", "1", "episodes of sustained contact"},
+    {"first_impact_deg", "/first_impact_deg", "degree", "hub angle of the first impact"},
+    {"last_separation_deg", "/last_separation_deg", "degree", "hub angle of the last separation"},
+    {"contact_time_s", "/contact_time_s", "s", "total time in sustained contact"},
+    {"peak_normal_force_n", "/peak_normal_force_n", "N", "largest normal force in sustained contact"},
+    {"mean_normal_force_n", "/mean_normal_force_n", "N", "mean normal force in sustained contact"},
+    {"normal_impulse_n_s", "/normal_impulse_n_s", "N s", "normal impulse of contact and impacts"},
+    {"binned_peak_normal_force_n", "/binned_force/peak_normal_force_n", "N",
+     "peak of the normal force over hub-angle bins, impacts counted as momentum"},
+    {"friction_work_j", "/friction_work_j", "J", "work of friction on the tip"},
+    {"max_tip_deflection_ratio", "/max_tip_deflection_ratio", "1", "largest tip deflection over the length"},
+    {"energy_audit_residual", "/energy_audit_residual", "1", "relative residual of the energy audit"},
+    // The last complete revolution of a run over revolutions (the steady one): what a rub map reads
+    // (docs/surfaces.md).
+    {"last_revolution_impacts", "/last_revolution/impacts", "1", "impacts in the last complete revolution"},
+    {"last_revolution_peak_normal_force_n", "/last_revolution/peak_normal_force_n", "N",
+     "largest normal force in the last complete revolution"},
+    {"last_revolution_normal_impulse_n_s", "/last_revolution/normal_impulse_n_s", "N s",
+     "normal impulse in the last complete revolution"},
+    {"last_revolution_friction_work_j", "/last_revolution/friction_work_j", "J",
+     "work of friction in the last complete revolution"},
+    {"last_revolution_max_tip_deflection_ratio", "/last_revolution/max_tip_deflection_ratio", "1",
+     "largest tip deflection over the length in the last complete revolution"},
+    {"steady_after_revolutions", "/steady_state/after_revolutions", "1",
+     "revolutions run until the steady state was reached (runs with until_steady; 0: not reached)"},
+    {"f1_hz", "/natural_frequencies_hz/0", "Hz", "first natural frequency at the hub speed"},
+    {"f2_hz", "/natural_frequencies_hz/1", "Hz", "second natural frequency at the hub speed"},
+    {"f3_hz", "/natural_frequencies_hz/2", "Hz", "third natural frequency at the hub speed"},
+    {"steps", "/steps", "1", "integration steps"},
+    {"rhs_evaluations", "/rhs_evaluations", "1", "evaluations of the equations of motion"},
+    {"wall_time_s", "/wall_time_s", "s", "wall time of the case (the machine's, not a result)"}};
 // The columns of a sweep over brushes (docs/brush.md: the brush maps).
-const Metric kBrushMetrics[] = {{"mean_normal_force_n", "/mean_normal_force_n"},
-                                {"mean_tangential_force_n", "/mean_tangential_force_n"},
-                                {"peak_normal_force_n", "/peak_normal_force_n"},
-                                {"peak_tangential_force_n", "/peak_tangential_force_n"},
-                                {"mean_hub_torque_n_m", "/mean_hub_torque_n_m"},
-                                {"mean_hub_power_w", "/mean_hub_power_w"},
-                                {"contact_zone_deg", "/contact_zone/angle_deg"},
-                                {"contact_zone_width_m", "/contact_zone/width_m"},
-                                {"depth_ratio", "/dimensionless/depth_ratio"},
-                                {"speed_ratio", "/dimensionless/speed_ratio"},
-                                {"force_ratio", "/dimensionless/force_ratio"},
-                                {"steady_filaments", "/steady_filaments"},
-                                {"failed_filaments", "/failed_filaments"},
-                                {"wall_time_s", "/wall_time_s"}};
+const SweepMetric kBrushMetrics[] = {
+    {"mean_normal_force_n", "/mean_normal_force_n", "N", "mean normal force on the workpiece over a revolution"},
+    {"mean_tangential_force_n", "/mean_tangential_force_n", "N", "mean tangential force on the workpiece"},
+    {"peak_normal_force_n", "/peak_normal_force_n", "N", "peak of the binned normal force"},
+    {"peak_tangential_force_n", "/peak_tangential_force_n", "N", "peak of the binned tangential force"},
+    {"mean_hub_torque_n_m", "/mean_hub_torque_n_m", "N m", "mean torque the hub supplies"},
+    {"mean_hub_power_w", "/mean_hub_power_w", "W", "mean power the hub supplies"},
+    {"contact_zone_deg", "/contact_zone/angle_deg", "degree", "span of a filament's angle that delivers momentum"},
+    {"contact_zone_width_m", "/contact_zone/width_m", "m", "extent along the surface that tips touch"},
+    {"depth_ratio", "/dimensionless/depth_ratio", "1", "depth over length, d/L"},
+    {"speed_ratio", "/dimensionless/speed_ratio", "1", "hub speed over the first bending frequency"},
+    {"force_ratio", "/dimensionless/force_ratio", "1", "mean normal force per filament over 3EI d/L^3"},
+    {"steady_filaments", "/steady_filaments", "1", "filaments that reached their steady state"},
+    {"failed_filaments", "/failed_filaments", "1", "filaments stopped on a numerical failure"},
+    {"wall_time_s", "/wall_time_s", "s", "wall time of the case (the machine's, not a result)"}};
+
+// A sink that drops the rows and events as they come (a sweep in memory keeps only the summary).
+class DiscardingSink : public PassSink {
+public:
+  void row(const HistoryRow&) override {}
+  void event(const PassEvent&) override {}
+};
+
+// Status and message of a case from how its pass or brush ended.
+void set_outcome(SweepCaseResult& res, const std::optional<NumericalFailure>& failure, const std::string& where) {
+  if (!failure)
+    res.status = SweepStatus::done;
+  else if (failure->kind == FailureKind::interrupted)
+    res.status = SweepStatus::interrupted;
+  else
+    res.status = SweepStatus::failed;
+  if (failure) res.message = std::string(failure_name(failure->kind)) + where + ": " + failure->message;
+}
+
+// Writes `text` to the temporary file `path` (not atomically: nothing reads it under that name but
+// the caller). Throws std::runtime_error naming it.
+void write_temporary(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out << text;
+  out.flush();
+  if (!out) {
+    std::error_code ec;
+    std::filesystem::remove(path, ec);
+    throw std::runtime_error(path.string() + ": cannot write");
+  }
+}
+
+// Removes what a killed sweep or merge left in the sweep folder `dir` (held under its lock, so no
+// live writer's): "sweep.csv.tmp.<pid>[.<n>]", likewise for sweep.json and sweep.nc (written by
+// rotbeam.netcdf). Any other name is not ours.
+void remove_killed_temporaries(const std::filesystem::path& dir) {
+  std::error_code ec;
+  for (const std::filesystem::directory_entry& e : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    for (const std::string stem : {"sweep.csv.tmp.", "sweep.json.tmp.", "sweep.nc.tmp."}) {
+      if (name.rfind(stem, 0) != 0) continue;
+      const std::string rest = name.substr(stem.size());
+      const std::size_t dot = rest.find('.');
+      const auto digits = [](const std::string& t) {
+        return !t.empty() && t.find_first_not_of("0123456789") == std::string::npos;
+      };
+      if (dot == std::string::npos ? digits(rest) : digits(rest.substr(0, dot)) && digits(rest.substr(dot + 1)))
+        std::filesystem::remove(e.path(), ec);
+    }
+  }
+}
+
+// The leaves of a configuration's JSON by dotted key ("hub.speed_rpm").
+void flatten(const nlohmann::json& j, const std::string& prefix, std::map<std::string, nlohmann::json>& out) {
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    const std::string key = prefix.empty() ? it.key() : prefix + "." + it.key();
+    if (it.value().is_object())
+      flatten(it.value(), key, out);
+    else
+      out[key] = it.value();
+  }
+}
 
 // True when a case's summary.json holds what resuming reads as summary_json wrote it: a config
 // object, and a failure that is null or an object with the string kind and message. A damaged one
@@ -205,7 +274,7 @@ SweepAxis parse_sweep_axis(const std::string& spec) {
   return axis;
 }
 
-std::vector<SweepCase> sweep_cases(const std::vector<SweepAxis>& axes) {
+std::size_t sweep_grid_size(const std::vector<SweepAxis>& axes) {
   std::size_t total = 1;
   for (std::size_t i = 0; i < axes.size(); ++i) {
     for (std::size_t j = 0; j < i; ++j)
@@ -216,45 +285,175 @@ std::vector<SweepCase> sweep_cases(const std::vector<SweepAxis>& axes) {
       throw ConfigError("--vary: the grid has more than " + std::to_string(kMaxSweepCases) +
                         " cases; split the study into several sweeps");
   }
-  std::vector<SweepCase> cases;
-  for (std::size_t i = 0; i < total; ++i) {
-    SweepCase c;
-    c.index = static_cast<int>(i);
-    std::size_t rem = i;
-    c.values.resize(axes.size());
-    for (std::size_t k = axes.size(); k-- > 0;) {
-      c.values[k] = axes[k].values[rem % axes[k].values.size()];
-      rem /= axes[k].values.size();
-    }
-    for (std::size_t k = 0; k < axes.size(); ++k) c.overrides.push_back(axes[k].key + "=" + c.values[k]);
-    char name[32];
-    std::snprintf(name, sizeof name, "case-%04zu", i + 1);
-    c.folder = name;
-    cases.push_back(c);
+  return total;
+}
+
+SweepCase sweep_case_at(const std::vector<SweepAxis>& axes, std::size_t index) {
+  SweepCase c;
+  c.index = static_cast<int>(index);
+  std::size_t rem = index;
+  c.values.resize(axes.size());
+  for (std::size_t k = axes.size(); k-- > 0;) {
+    c.values[k] = axes[k].values[rem % axes[k].values.size()];
+    rem /= axes[k].values.size();
   }
+  for (std::size_t k = 0; k < axes.size(); ++k) c.overrides.push_back(axes[k].key + "=" + c.values[k]);
+  char name[32];
+  std::snprintf(name, sizeof name, "case-%04zu", index + 1);
+  c.folder = name;
+  return c;
+}
+
+std::vector<SweepCase> sweep_cases(const std::vector<SweepAxis>& axes) {
+  const std::size_t total = sweep_grid_size(axes);
+  std::vector<SweepCase> cases;
+  cases.reserve(total);
+  for (std::size_t i = 0; i < total; ++i) cases.push_back(sweep_case_at(axes, i));
   return cases;
+}
+
+CaseLoader case_loader(const std::optional<std::string>& config_path, const std::vector<std::string>& base_overrides) {
+  return [config_path, base_overrides](const SweepCase& c) {
+    std::vector<std::string> overrides = base_overrides;
+    overrides.insert(overrides.end(), c.overrides.begin(), c.overrides.end());
+    return load_config(config_path, overrides);
+  };
+}
+
+SweepPlan plan_sweep(const std::vector<SweepAxis>& axes, const CaseLoader& load) {
+  SweepPlan plan;
+  plan.axes = axes;
+  plan.cases = sweep_cases(axes);
+  plan.configs.reserve(plan.cases.size());
+  for (const SweepCase& c : plan.cases) {
+    try {
+      plan.configs.push_back(load(c));
+    } catch (const ConfigError& e) {
+      std::string values;
+      for (const std::string& o : c.overrides) values += (values.empty() ? "" : ", ") + o;
+      throw ConfigError(c.folder + " (" + values + "): " + e.what());
+    }
+  }
+  // A sweep is over brushes or over single filaments (a --vary of a brush key sets it in every case).
+  plan.brush = !plan.configs.empty() && plan.configs.front().brush.has_value();
+  // What the cases share: the keys whose resolved value is the same in every case.
+  std::map<std::string, nlohmann::json> common;
+  std::set<std::string> varying;
+  for (std::size_t i = 0; i < plan.configs.size(); ++i) {
+    std::map<std::string, nlohmann::json> keys;
+    flatten(plan.configs[i].to_json(), "", keys);
+    if (i == 0) {
+      common = std::move(keys);
+      continue;
+    }
+    for (auto it = common.begin(); it != common.end();) {
+      const auto found = keys.find(it->first);
+      if (found == keys.end() || found->second != it->second) {
+        varying.insert(it->first);
+        it = common.erase(it);
+      } else {
+        ++it;
+      }
+    }
+    for (const auto& [key, value] : keys)
+      if (!common.count(key)) varying.insert(key);
+  }
+  plan.common_config = nlohmann::json::object();
+  for (const auto& [key, value] : common) plan.common_config[nlohmann::json::json_pointer("/" + [&] {
+    std::string p = key;
+    for (char& ch : p)
+      if (ch == '.') ch = '/';
+    return p;
+  }())] = value;
+  for (const SweepAxis& a : axes) varying.insert(a.key);  // a key varied over one value is still varied
+  plan.varying_keys.assign(varying.begin(), varying.end());
+  return plan;
+}
+
+nlohmann::json sweep_description(const SweepPlan& plan, Shard shard) {
+  nlohmann::json axes = nlohmann::json::array();
+  for (const SweepAxis& a : plan.axes) axes.push_back({{"key", a.key}, {"values", a.values}});
+  return {{"format", "rotbeam sweep"},
+          {"version", kVersion},
+          {"axes", axes},
+          {"cases", plan.cases.size()},
+          {"shard", {{"index", shard.index}, {"count", shard.count}}},
+          {"brush", plan.brush},
+          {"config", plan.common_config},
+          {"varying_keys", plan.varying_keys}};
+}
+
+Shard parse_shard(const std::string& text) {
+  const std::string shown = printable(text);
+  const std::size_t slash = text.find('/');
+  const auto whole = [](const std::string& t, long long& v) {
+    const auto res = std::from_chars(t.data(), t.data() + t.size(), v);
+    return !t.empty() && res.ec == std::errc() && res.ptr == t.data() + t.size();
+  };
+  long long i = 0, n = 0;
+  if (slash == std::string::npos || !whole(text.substr(0, slash), i) || !whole(text.substr(slash + 1), n))
+    throw ConfigError("--shard " + (text.empty() ? std::string("\"\"") : shown) +
+                      ": expected I/N, shard I of N counted from 0 (e.g. --shard 0/4 … --shard 3/4)");
+  if (n < 1 || n > static_cast<long long>(kMaxSweepCases))
+    throw ConfigError("--shard " + shown + ": N must be from 1 to " + std::to_string(kMaxSweepCases));
+  if (i < 0 || i >= n)
+    throw ConfigError("--shard " + shown + ": I must be from 0 to " + std::to_string(n - 1) +
+                      " (the shards of " + std::to_string(n) + " are counted from 0)");
+  return Shard{static_cast<int>(i), static_cast<int>(n)};
+}
+
+std::span<const SweepMetric> sweep_metrics(bool brush) {
+  return brush ? std::span<const SweepMetric>(kBrushMetrics) : std::span<const SweepMetric>(kMetrics);
+}
+
+std::optional<double> sweep_metric_value(const nlohmann::json& summary, const SweepMetric& metric) {
+  const nlohmann::json::json_pointer at(metric.pointer);
+  if (summary.is_object() && summary.contains(at) && summary[at].is_number()) return summary[at].get<double>();
+  return std::nullopt;
+}
+
+SweepCaseResult run_sweep_case(const Config& config, const StopToken* stop) {
+  SweepCaseResult res;
+  try {
+    if (config.brush) {
+      BrushOptions brush_options;
+      brush_options.threads = 1;  // the cases fill the cores
+      brush_options.stop = stop;
+      const BrushResult brush = run_brush(config, brush_options);
+      res.summary = brush_summary_json(brush, config);
+      set_outcome(res, brush.summary.failure, " (filament " + std::to_string(brush.summary.failed_filament + 1) + ")");
+      return res;
+    }
+    const Case c = build_case(config);
+    DiscardingSink sink;
+    const PassResult pass = run_case(c, {&sink, stop, {}});
+    res.summary = summary_json(pass, config, *c.surface);
+    set_outcome(res, pass.failure, "");
+  } catch (const std::exception& e) {
+    res = SweepCaseResult{};
+    res.status = SweepStatus::error;
+    res.message = e.what();
+  }
+  return res;
 }
 
 SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& options) {
   SweepReport report;
   report.axes = axes;
-  report.cases = sweep_cases(axes);
-  report.results.resize(report.cases.size());
-  // Validate every case before running any.
+  report.shard = options.shard;
+  if (options.shard.count < 1 || options.shard.index < 0 || options.shard.index >= options.shard.count)
+    throw ConfigError("--shard " + std::to_string(options.shard.index) + "/" + std::to_string(options.shard.count) +
+                      ": I must be from 0 to N-1");
+  // Validate every case of the grid before running any (every shard refuses a bad grid alike).
+  const SweepPlan plan = plan_sweep(axes, case_loader(options.config_path, options.base_overrides));
+  report.grid_cases = plan.cases.size();
   std::vector<Config> configs;
-  for (const SweepCase& c : report.cases) {
-    std::vector<std::string> overrides = options.base_overrides;
-    overrides.insert(overrides.end(), c.overrides.begin(), c.overrides.end());
-    try {
-      configs.push_back(load_config(options.config_path, overrides));
-    } catch (const ConfigError& e) {
-      throw ConfigError(c.folder + " (" + [&] {
-        std::string s;
-        for (const std::string& o : c.overrides) s += (s.empty() ? "" : ", ") + o;
-        return s;
-      }() + "): " + e.what());
+  for (std::size_t i = 0; i < plan.cases.size(); ++i)
+    if (options.shard.contains(i)) {
+      report.cases.push_back(plan.cases[i]);
+      configs.push_back(plan.configs[i]);
     }
-  }
+  report.results.resize(report.cases.size());
   // The cases' histories must fit on the disk, as for one run (check_history_fits, on the same
   // central estimate): checked before the folder is made (cases an earlier run finished are counted
   // too).
@@ -271,8 +470,7 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
                         " cases would take about " + size_text(need) + ", more than the " + size_text(available) +
                         " free where " + options.dir.string() + " goes (sample less often)");
   }
-  // A sweep is over brushes or over single filaments (a --vary of a brush key sets it in every case).
-  report.brush = !configs.empty() && configs.front().brush.has_value();
+  report.brush = plan.brush;
   // A run's folder (its summary.json) is not made a sweep's as well: `plot` would draw one of the two.
   if (std::filesystem::exists(options.dir / "summary.json"))
     throw ConfigError("-o " + options.dir.string() + ": holds a run (summary.json), not a sweep; give another folder");
@@ -286,6 +484,8 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
   } catch (const std::runtime_error& e) {
     throw ConfigError(std::string("-o ") + e.what());
   }
+
+  remove_killed_temporaries(options.dir);
 
   // Finished earlier? A complete folder (summary.json and the files it lists, at their sizes) of
   // the same configuration, not interrupted.
@@ -325,15 +525,23 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
       todo.push_back(i);
   }
 
-  // An older sweep.csv describes other cases (or an older state of these): until this sweep writes
-  // its own at the end, the folder has no index, so that nothing reads a mix of two sweeps.
-  if (!todo.empty()) {
-    std::error_code ec;
-    std::filesystem::remove(options.dir / "sweep.csv", ec);
-    if (ec)
-      throw std::runtime_error((options.dir / "sweep.csv").string() + ": cannot remove the older index (" +
-                               ec.message() + ")");
+  // An older sweep.csv (and sweep.nc) describes other cases (or an older state of these): until
+  // this sweep writes its own at the end, the folder has no index, so that nothing reads a mix of
+  // two sweeps. sweep.json, which says what the folder's sweep is, is written before any case runs.
+  const std::string description = sweep_description(plan, options.shard).dump(2) + "\n";
+  const std::string older_description = [&] {
+    std::ifstream in(options.dir / "sweep.json", std::ios::binary);
+    return in ? std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()) : std::string();
+  }();
+  if (!todo.empty() || older_description != description) {
+    for (const char* name : {"sweep.csv", "sweep.nc"}) {
+      std::error_code ec;
+      std::filesystem::remove(options.dir / name, ec);
+      if (ec)
+        throw std::runtime_error((options.dir / name).string() + ": cannot remove the older index (" + ec.message() + ")");
+    }
   }
+  if (older_description != description) write_file_atomically(options.dir / "sweep.json", description);
 
   std::mutex mutex;
   SweepProgress progress;
@@ -370,30 +578,18 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
             const BrushResult brush = run_brush(configs[i], brush_options);
             files.commit(brush, configs[i]);
             res.summary = brush_summary_json(brush, configs[i]);
-            const std::optional<NumericalFailure>& f = brush.summary.failure;
-            res.status = !f ? SweepStatus::done
-                         : f->kind == FailureKind::interrupted ? SweepStatus::interrupted
-                                                               : SweepStatus::failed;
-            if (f)
-              res.message = std::string(failure_name(f->kind)) + " (filament " +
-                            std::to_string(brush.summary.failed_filament + 1) + "): " + f->message;
-            std::lock_guard<std::mutex> lock(mutex);
-            report.results[i] = res;
-            return;
+            set_outcome(res, brush.summary.failure, " (filament " + std::to_string(brush.summary.failed_filament + 1) + ")");
+          } else {
+            const Case c = build_case(configs[i]);
+            PassFiles files(options.dir / report.cases[i].folder, configs[i].beam.modes,
+                            configs[i].simulation.history_revolutions);
+            const PassResult pass = run_case(c, {&files, options.stop, {}});
+            files.commit(pass, configs[i], *c.surface);
+            res.summary = summary_json(pass, configs[i], *c.surface);
+            set_outcome(res, pass.failure, "");
           }
-          const Case c = build_case(configs[i]);
-          PassFiles files(options.dir / report.cases[i].folder, configs[i].beam.modes, configs[i].simulation.history_revolutions);
-          const PassResult pass = run_case(c, {&files, options.stop, {}});
-          files.commit(pass, configs[i], *c.surface);
-          res.summary = summary_json(pass, configs[i], *c.surface);
-          if (!pass.failure)
-            res.status = SweepStatus::done;
-          else if (pass.failure->kind == FailureKind::interrupted)
-            res.status = SweepStatus::interrupted;
-          else
-            res.status = SweepStatus::failed;
-          if (pass.failure) res.message = std::string(failure_name(pass.failure->kind)) + ": " + pass.failure->message;
         } catch (const std::exception& e) {
+          res = SweepCaseResult{};
           res.status = SweepStatus::error;
           res.message = e.what();
         }
@@ -418,7 +614,21 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
       case SweepStatus::resumed: break;
     }
   }
-  write_file_atomically(options.dir / "sweep.csv", sweep_csv(report));
+  const std::string index = sweep_csv(report);
+  if (options.before_index && report.interrupted == 0) {
+    // The index's text in a temporary file beside it for the hook (sweep.nc is made from it), then
+    // sweep.csv itself, last.
+    const std::filesystem::path tmp = options.dir / ("sweep.csv.tmp." + std::to_string(::getpid()) + ".1");
+    try {
+      write_temporary(tmp, index);
+      options.before_index(tmp);
+    } catch (const std::exception& e) {
+      report.index_error = e.what();
+    }
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+  }
+  write_file_atomically(options.dir / "sweep.csv", index);
   std::set<std::string> ours;
   for (const SweepCase& c : report.cases) ours.insert(c.folder);
   std::error_code ec;
@@ -439,8 +649,8 @@ std::string sweep_csv(const SweepReport& report) {
     out += csv_field(a.key);
   }
   out += ",status";
-  const std::span<const Metric> metrics = report.brush ? std::span<const Metric>(kBrushMetrics) : std::span<const Metric>(kMetrics);
-  for (const Metric& m : metrics) out += std::string(",") + m.column;
+  const std::span<const SweepMetric> metrics = sweep_metrics(report.brush);
+  for (const SweepMetric& m : metrics) out += std::string(",") + m.column;
   out += ",message\n";
   for (std::size_t i = 0; i < report.cases.size(); ++i) {
     const SweepCase& c = report.cases[i];
@@ -453,12 +663,11 @@ std::string sweep_csv(const SweepReport& report) {
       out += csv_field(v);
     }
     out += std::string(",") + sweep_status_name(r.status);
-    for (const Metric& m : metrics) {
+    for (const SweepMetric& m : metrics) {
       out += ",";
-      const nlohmann::json::json_pointer at(m.pointer);
-      if (r.summary.is_object() && r.summary.contains(at) && r.summary[at].is_number()) {
+      if (const std::optional<double> v = sweep_metric_value(r.summary, m)) {
         char buf[40];
-        std::snprintf(buf, sizeof buf, "%.17g", r.summary[at].get<double>());
+        std::snprintf(buf, sizeof buf, "%.17g", *v);
         out += buf;
       }
     }

@@ -381,7 +381,8 @@ def markdown_tables(text):
 
 
 @pytest.mark.parametrize("name", ["docs/deviations.md", "docs/configuration.md", "docs/cli.md", "docs/model.md",
-                                  "docs/python.md", "docs/verification.md", "docs/reliability.md", "README.md"])
+                                  "docs/python.md", "docs/verification.md", "docs/reliability.md", "README.md",
+                                  "docs/distributed.md"])
 def test_every_table_of_the_docs_is_one_block_under_its_header(name):
     for table in markdown_tables((ROOT / name).read_text()):
         first = table[0][0]
