@@ -359,12 +359,12 @@ SweepPlan plan_sweep(const std::vector<SweepAxis>& axes, const CaseLoader& load)
       if (!common.count(key)) varying.insert(key);
   }
   plan.common_config = nlohmann::json::object();
-  for (const auto& [key, value] : common) plan.common_config[nlohmann::json::json_pointer("/" + [&] {
-    std::string p = key;
-    for (char& ch : p)
+  for (const auto& [key, value] : common) {
+    std::string pointer = "/" + key;  // "section.key" → "/section/key"
+    for (char& ch : pointer)
       if (ch == '.') ch = '/';
-    return p;
-  }())] = value;
+    plan.common_config[nlohmann::json::json_pointer(pointer)] = value;
+  }
   for (const SweepAxis& a : axes) varying.insert(a.key);  // a key varied over one value is still varied
   plan.varying_keys.assign(varying.begin(), varying.end());
   return plan;
