@@ -100,6 +100,99 @@ double ReferenceBeam::angular_momentum(const Eigen::VectorXd& q, const Eigen::Ve
   return (2.0 * t0(q) / (w * w)) * w + t1(q, v) / w;
 }
 
+ReferenceElastica::ReferenceElastica(const ElasticaBeam& model, int panels) : model_(model) {
+  const int n = model.n;
+  const ModalBasis basis(n);
+  gauss_nodes(0.0, 1.0, panels, xi_, w_);
+  Eigen::VectorXd ds(n), d2s(n);
+  std::vector<double> xin, win;
+  for (double xi : xi_) {
+    basis.evaluate(xi, nullptr, nullptr, d2s.data());
+    d2s_.push_back(d2s);
+    gauss_nodes(0.0, xi, std::max(1, static_cast<int>(std::ceil(xi * panels))), xin, win);
+    std::vector<Eigen::VectorXd> slopes;
+    for (double x : xin) {
+      basis.evaluate(x, nullptr, ds.data(), nullptr);
+      slopes.push_back(ds);
+    }
+    inner_w_.push_back(win);
+    inner_ds_.push_back(std::move(slopes));
+  }
+  gauss_nodes(0.0, 1.0, panels, xin, tip_w_);
+  for (double x : xin) {
+    basis.evaluate(x, nullptr, ds.data(), nullptr);
+    tip_ds_.push_back(ds);
+  }
+}
+
+void ReferenceElastica::point(std::size_t g, const Eigen::VectorXd& q, const Eigen::VectorXd* v, double& x, double& y,
+                              double& xd, double& yd) const {
+  const double L = model_.length;
+  double c = 0, s = 0, vc = 0, vs = 0;
+  for (std::size_t k = 0; k < inner_w_[g].size(); ++k) {
+    const double phi = inner_ds_[g][k].dot(q) / L;
+    const double rate = v ? inner_ds_[g][k].dot(*v) / L : 0.0;
+    c += inner_w_[g][k] * std::cos(phi);
+    s += inner_w_[g][k] * std::sin(phi);
+    vc += inner_w_[g][k] * std::cos(phi) * rate;
+    vs += inner_w_[g][k] * std::sin(phi) * rate;
+  }
+  x = model_.hub_radius + L * c;
+  y = L * s;
+  xd = -L * vs;
+  yd = L * vc;
+}
+
+double ReferenceElastica::t0(const Eigen::VectorXd& q) const {
+  if (!model_.centrifugal) return 0.0;
+  double sum = 0.0, x, y, xd, yd;
+  for (std::size_t g = 0; g < xi_.size(); ++g) {
+    point(g, q, nullptr, x, y, xd, yd);
+    sum += w_[g] * (x * x + y * y);
+  }
+  return 0.5 * model_.omega * model_.omega * model_.mass * sum;
+}
+
+double ReferenceElastica::t1(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const {
+  if (!model_.coriolis) return 0.0;
+  double sum = 0.0, x, y, xd, yd;
+  for (std::size_t g = 0; g < xi_.size(); ++g) {
+    point(g, q, &v, x, y, xd, yd);
+    sum += w_[g] * (x * yd - y * xd);
+  }
+  return model_.omega * model_.mass * sum;
+}
+
+double ReferenceElastica::t2(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const {
+  double sum = 0.0, x, y, xd, yd;
+  for (std::size_t g = 0; g < xi_.size(); ++g) {
+    point(g, q, &v, x, y, xd, yd);
+    sum += w_[g] * (xd * xd + yd * yd);
+  }
+  return 0.5 * model_.mass * sum;
+}
+
+double ReferenceElastica::potential(const Eigen::VectorXd& q) const {
+  const double L = model_.length;
+  double sum = 0.0;
+  for (std::size_t g = 0; g < xi_.size(); ++g) {
+    const double curvature = d2s_[g].dot(q);  // L² φ'
+    sum += w_[g] * curvature * curvature;
+  }
+  return 0.5 * model_.bending_stiffness / (L * L * L) * sum;
+}
+
+Eigen::Vector2d ReferenceElastica::tip(const Eigen::VectorXd& q) const {
+  const double L = model_.length;
+  double c = 0, s = 0;
+  for (std::size_t k = 0; k < tip_w_.size(); ++k) {
+    const double phi = tip_ds_[k].dot(q) / L;
+    c += tip_w_[k] * std::cos(phi);
+    s += tip_w_[k] * std::sin(phi);
+  }
+  return {model_.hub_radius + L * c, L * s};
+}
+
 void random_state(const ForeshorteningBeam& model, unsigned seed, double tip_deflection_m, double speed, Eigen::VectorXd& q,
                   Eigen::VectorXd& v) {
   std::mt19937 rng(seed);

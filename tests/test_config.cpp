@@ -107,6 +107,23 @@ TEST(Config, ErrorsNameTheKeyAndTheValue) {
 }
 
 // A value is one line: a line break could carry a second assignment into the TOML text.
+TEST(Config, TheTheoryAndTheSwitchesAreCheckedByName) {
+  EXPECT_EQ(error_of("", {"beam.theory=timoshenko"}),
+            "beam.theory = \"timoshenko\": must be one of \"foreshortening\", \"elastica\"");
+  EXPECT_EQ(error_of("", {"beam.modes=60"}), "beam.modes = 60: must be in 1..40 (1..80 with beam.theory = \"elastica\")");
+  EXPECT_EQ(error_of("", {"beam.theory=elastica", "beam.modes=81"}),
+            "beam.modes = 81: must be in 1..40 (1..80 with beam.theory = \"elastica\")");
+  EXPECT_EQ(load_config_string("", {"beam.theory=elastica", "beam.modes=80", "initial.start=rigid"}).beam.modes, 80);
+  EXPECT_EQ(error_of("", {"model.centrifugal=1"}), "model.centrifugal = 1: must be true or false");
+  EXPECT_NE(error_of("", {"model.gyroscopic=false"}).find("model.gyroscopic: unknown key"), std::string::npos);
+  const std::string limit = error_of("", {"beam.theory=elastica", "simulation.deflection_limit_is_error=true"});
+  EXPECT_EQ(limit.rfind("simulation.deflection_limit_is_error = true: ", 0), 0u) << limit;
+  const Config c = load_config_string("[model]\ncentrifugal = false\ncoriolis = false\n", {});
+  EXPECT_FALSE(c.beam.centrifugal);
+  EXPECT_FALSE(c.beam.coriolis);
+  EXPECT_EQ(c.beam.theory, BeamTheory::foreshortening);
+}
+
 TEST(Config, AnOverrideValueIsOneLine) {
   for (const char* o : {"hub.speed_rpm=3000\nsurface.friction=0.9", "hub.speed_rpm=3000\r", "initial.start=rigid\n"}) {
     try {
@@ -156,8 +173,18 @@ TEST(Config, ResolvedJsonRoundTripsThroughToml) {
   // steady_method, multipliers}, output.{history_revolutions, near_surface_interval_s,
   // near_surface_gap_m, bin_deg}, simulation.{integrating_factor, end_when_clear}, brush.{filaments,
   // rows, row_phase_deg, phase_jitter_deg, length_scatter, diameter_scatter, seed}, surface.{shape,
-  // radius_m, speed_rpm, clearance_m, lobes, lobe_amplitude_m, lobe_law}
-  EXPECT_EQ(config_keys().size(), 60u);
+  // radius_m, speed_rpm, clearance_m, lobes, lobe_amplitude_m, lobe_law}, beam.theory,
+  // model.{centrifugal, coriolis}
+  EXPECT_EQ(config_keys().size(), 63u);
+  // The theory and the switches appear where they differ from the thesis's, and read back.
+  EXPECT_FALSE(j["beam"].contains("theory"));
+  EXPECT_FALSE(j.contains("model"));
+  const Config e = load_config_string("[beam]\ntheory = \"elastica\"\nmodes = 60\n[model]\ncoriolis = false\n", {});
+  const nlohmann::json je = e.to_json();
+  EXPECT_EQ(je["beam"]["theory"], "elastica");
+  EXPECT_EQ(je["model"]["coriolis"], false);
+  EXPECT_EQ(je["model"]["centrifugal"], true);
+  EXPECT_EQ(revalidate(e).to_json(), je);
   const Config d = load_config_string("", {"beam.modes=3", "beam.damping_ratio=[0.01,0.02,0.03]"});
   EXPECT_EQ(d.to_json()["beam"]["damping_ratio"], nlohmann::json::parse("[0.01,0.02,0.03]"));
   const Config one = load_config_string("[beam]\ndamping_ratio = 0.02\n", {});

@@ -85,6 +85,9 @@ public:
   virtual double tip_radius() const = 0;
   /// Filament length L [m] (the scale of the validity ratio |y_t|/L).
   virtual double beam_length() const = 0;
+  /// True when the theory's geometry is exact at any deflection (the elastica), so that the
+  /// deflection warning of simulation.deflection_warning_ratio (SPEC §10) does not apply.
+  virtual bool geometrically_exact() const = 0;
 
   /// A workspace for this model (the only kind its evaluations accept).
   virtual std::unique_ptr<BeamWorkspace> make_workspace() const = 0;

@@ -6,26 +6,13 @@
 #pragma once
 
 #include "rotbeam/beam_model.hpp"
+#include "rotbeam/beam_parameters.hpp"
 #include "rotbeam/modal_integrals.hpp"
 
 #include <memory>
 #include <vector>
 
 namespace rotbeam {
-
-/// Inputs of the filament on its hub, SI units (defaults: thesis Table 5-1, 550 rpm, 5 modes).
-struct BeamParameters {
-  double length_m = 0.0635;          // L
-  double diameter_m = 5.08e-4;       // D (circular section)
-  double density_kg_m3 = 7800.0;     // ρ
-  double youngs_modulus_pa = 2.2e11; // E
-  int modes = 5;                     // n
-  double hub_radius_m = 0.0635;      // r_h
-  double speed_rpm = 550.0;          // hub spin
-  // Modal damping ratios ζ_i of the linearised modes at the hub speed (SPEC §11): empty for none,
-  // one value for every mode, or n values (mode order: ascending frequency).
-  std::vector<double> damping_ratio;
-};
 
 class ForeshorteningBeam final : public BeamModel {
 public:
@@ -37,6 +24,9 @@ public:
   double mass_per_length = 0;    // ρA [kg/m]
   double bending_stiffness = 0;  // EI [N m²]
   double mass = 0;               // m = ρAL [kg]
+  // The rotation terms kept (BeamParameters): without model.centrifugal the ω² terms (K_ω, T0)
+  // are dropped, without model.coriolis the terms linear in ω (2ωG q̇, T1).
+  bool centrifugal = true, coriolis = true;
   std::shared_ptr<const ModalIntegrals> integrals;
   // Modal damping (SPEC §11): C = M0 Φ diag(2ζ_iΩ_i) Φᵀ M0 with Φ the mass-normalised linear modes
   // at ω (M0 = m·1); the generalised force is −C q̇. Empty (0×0) when undamped.
@@ -47,6 +37,7 @@ public:
   HubMotion hub_motion() const override { return {omega, theta0}; }
   double tip_radius() const override { return hub_radius + length; }
   double beam_length() const override { return length; }
+  bool geometrically_exact() const override { return false; }
   std::unique_ptr<BeamWorkspace> make_workspace() const override;
   void evaluate_mass(const Eigen::Ref<const Eigen::VectorXd>& q, BeamWorkspace& ws) const override;
   void evaluate_dynamics(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qd,

@@ -16,8 +16,12 @@
 
 namespace rotbeam {
 
-/// Largest number of assumed modes the library accepts.
+/// Largest number of assumed modes of the quadratic-foreshortening model (its precomputed ξ-integrals
+/// grow as n⁴).
 inline constexpr int kMaxModes = 40;
+/// Largest number of assumed modes of the elastica (elastica_beam.hpp), whose cost grows as n² times
+/// its quadrature nodes, and of a ModalBasis.
+inline constexpr int kMaxElasticaModes = 80;
 
 /// The i-th positive root (i = 1, 2, …) of cos r cosh r = −1, found by Newton's method on
 /// f(r) = cos r + 1/cosh r from the asymptotic guess (2i − 1)π/2. Accurate to ~1 ulp.

@@ -1,5 +1,6 @@
 #include "rotbeam/config.hpp"
 
+#include "rotbeam/beam_factory.hpp"
 #include "rotbeam/kinematics.hpp"
 
 #include <toml++/toml.h>
@@ -136,6 +137,12 @@ std::vector<double> number_array(const std::string& key, const toml::node& node,
   return out;
 }
 
+// beam.modes's range: the thesis model's, and the elastica's (beam.theory) beside it.
+std::string modes_range() {
+  return "must be in 1.." + std::to_string(kMaxModes) + " (1.." + std::to_string(kMaxElasticaModes) +
+         " with beam.theory = \"elastica\")";
+}
+
 struct Parsed {
   Config config;
   bool start_given = false;
@@ -178,8 +185,17 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
       {"beam.youngs_modulus_pa", [](Parsed& p, auto& k, auto& n) { p.config.beam.youngs_modulus_pa = number_in(k, n, 1e3, 1e15, false, false); }},
       {"beam.modes",
        [](Parsed& p, auto& k, auto& n) {
-         p.config.beam.modes = integer_in(k, n, 1, kMaxModes);
+         // Up to the elastica's limit here; the foreshortening model's lower one is checked with beam.theory.
+         if (!n.is_integer()) fail(k, n, "must be an integer");
+         const int64_t v = *n.template value<int64_t>();
+         if (v < 1 || v > kMaxElasticaModes) fail(k, n, modes_range());
+         p.config.beam.modes = static_cast<int>(v);
          p.modes_node = &n;
+       }},
+      {"beam.theory",
+       [](Parsed& p, auto& k, auto& n) {
+         p.config.beam.theory = one_of(k, n, {"foreshortening", "elastica"}) == "elastica" ? BeamTheory::elastica
+                                                                                          : BeamTheory::foreshortening;
        }},
       {"beam.damping_ratio",
        [](Parsed& p, auto& k, auto& n) {
@@ -195,6 +211,8 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
          }
          p.damping_node = &n;
        }},
+      {"model.centrifugal", [](Parsed& p, auto& k, auto& n) { p.config.beam.centrifugal = boolean(k, n); }},
+      {"model.coriolis", [](Parsed& p, auto& k, auto& n) { p.config.beam.coriolis = boolean(k, n); }},
       {"hub.radius_m", [](Parsed& p, auto& k, auto& n) { p.config.beam.hub_radius_m = number_in(k, n, 0.0, 100.0, false, false); }},
       // Below 1e-3 rpm (a turn in 17 hours) a pass lasts days of simulated time: the steps and
       // times leave the ranges the integration is built for (1e-9 rpm ended in step underflow).
@@ -602,6 +620,7 @@ Config validate(toml::table& root) {
     if (static_cast<int>(v.size()) != n)
       fail(key, *node, "must have beam.modes = " + std::to_string(n) + " values, got " + std::to_string(v.size()));
   };
+  if (p.modes_node && n > max_modes(c.beam.theory)) fail("beam.modes", *p.modes_node, modes_range());
   if (p.damping_node && c.beam.damping_ratio.size() != 1 && static_cast<int>(c.beam.damping_ratio.size()) != n)
     fail("beam.damping_ratio", *p.damping_node,
          "must be one number or beam.modes = " + std::to_string(n) + " values, got " +
@@ -685,14 +704,19 @@ Config validate(toml::table& root) {
       fail("simulation.integrating_factor", *p.factor_node, why);
   }
   if (sim.until_steady && !p.revolutions_node) sim.revolutions = kDefaultSteadyRevolutionCap;
+  if (c.beam.theory == BeamTheory::elastica && sim.deflection_limit_is_error)
+    fail("simulation.deflection_limit_is_error", *root.at_path("simulation.deflection_limit_is_error").node(),
+         "the deflection limit is the quadratic foreshortening model's; the elastica (beam.theory = \"elastica\") "
+         "is exact at any deflection");
   // The start the configuration describes must be possible (checked through the beam and surface).
-  ForeshorteningBeam beam;
+  std::shared_ptr<const BeamModel> beam_model;
   try {
-    beam = make_beam(c.beam);
+    beam_model = make_beam_model(c.beam);
   } catch (const std::invalid_argument& e) {
     if (p.damping_node) fail("beam.damping_ratio", *p.damping_node, e.what());
     throw ConfigError(e.what());
   }
+  const BeamModel& beam = *beam_model;
   const std::shared_ptr<const Surface> surface = make_surface(c.surface, beam);
   if (sim.revolutions > 0) sim.end_angle_deg = beam.theta(0.0) * 180.0 / M_PI + 360.0 * sim.revolutions;
   if (ini.start == "flexible") {
@@ -806,6 +830,9 @@ nlohmann::json Config::to_json() const {
                {"damping_ratio", beam.damping_ratio.empty() ? nlohmann::json(0.0)
                                  : beam.damping_ratio.size() == 1 ? nlohmann::json(beam.damping_ratio[0])
                                                                   : nlohmann::json(beam.damping_ratio)}};
+  // The theory and the rotation switches appear where they differ from the thesis's (older folders resume).
+  if (beam.theory != BeamTheory::foreshortening) j["beam"]["theory"] = beam_theory_name(beam.theory);
+  if (!beam.centrifugal || !beam.coriolis) j["model"] = {{"centrifugal", beam.centrifugal}, {"coriolis", beam.coriolis}};
   j["hub"] = {{"radius_m", beam.hub_radius_m}, {"speed_rpm", beam.speed_rpm}};
   // A plane's section is as it always was (older folders resume); other shapes add their keys.
   switch (surface.shape) {

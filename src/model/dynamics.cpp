@@ -109,12 +109,12 @@ void force_kernel(const ForeshorteningBeam& model, const double* qv, const doubl
       const double back = vv[i] * qv[k];
       for (int j = 0; j < n; ++j) gyro[j] -= back * bik[j];  // −Σ_ik B[i,k,j] q̇_i q_k
     }
-  const double g2 = 2.0 * model.omega * model.mass_per_length;
+  const double g2 = model.coriolis ? 2.0 * model.omega * model.mass_per_length : 0.0;
   for (int i = 0; i < n; ++i) gyro[i] *= g2;
 
   // K_ω q = m ω² [ (r_h/L) ∫ISP q + ∫ξ ISP q − ∫ISP q (qᵀISP q)/(2L²) − q ].
   const double L = model.length;
-  const double rh_l = model.hub_radius / L, cw = model.mass * model.omega * model.omega;
+  const double rh_l = model.hub_radius / L, cw = model.centrifugal ? model.mass * model.omega * model.omega : 0.0;
   const double* im = mi.isp_mean.data();  // column-major, symmetric
   const double* ix = mi.isp_xi.data();
   for (int i = 0; i < n; ++i) {
@@ -179,7 +179,8 @@ Eigen::MatrixXd linear_stiffness(const ForeshorteningBeam& model) {
   const ModalIntegrals& mi = *model.integrals;
   const int n = mi.n;
   const double L = model.length;
-  Eigen::MatrixXd k = model.mass * model.omega * model.omega *
+  const double w2 = model.centrifugal ? model.omega * model.omega : 0.0;
+  Eigen::MatrixXd k = model.mass * w2 *
                       ((model.hub_radius / L) * mi.isp_mean + mi.isp_xi - Eigen::MatrixXd::Identity(n, n));
   k.diagonal() += (model.bending_stiffness / (L * L * L)) * mi.r4;
   return 0.5 * (k + k.transpose());

@@ -49,9 +49,11 @@ EnergyTerms evaluate_energy(const ForeshorteningBeam& model, const Eigen::Ref<co
   const double y_xdot = -m * qvq / L;
   e.relative_momentum = x_ydot - y_xdot;
 
-  e.t0 = 0.5 * w * w * e.spin_inertia;
-  e.t1 = w * e.relative_momentum;
-  e.angular_momentum = w * e.spin_inertia + e.relative_momentum;
+  // The switched-off rotation terms leave the Lagrangian, and with them their share of H_z = ∂T/∂ω.
+  const double s0 = model.centrifugal ? 1.0 : 0.0, s1 = model.coriolis ? 1.0 : 0.0;
+  e.t0 = s0 * 0.5 * w * w * e.spin_inertia;
+  e.t1 = s1 * w * e.relative_momentum;
+  e.angular_momentum = s0 * w * e.spin_inertia + s1 * e.relative_momentum;
 
   // U = ½ (EI/L³) [ Σ r_i⁴ q_i² + ∫ (qᵀ P q)²/(4L²) ].
   double quartic_p = 0.0;
@@ -112,7 +114,7 @@ double angular_momentum_rate(const ForeshorteningBeam& model, const Eigen::Ref<c
     }
   const double dp = m * ((rh * mi.s_mean + L * mi.s_xi).dot(qdd) - (2.0 * b_vqv + b_qqa) / (2.0 * L) +
                          (b_vvq + b_qaq + b_vqv) / L);
-  return w * grad_j_v + dp;
+  return (model.centrifugal ? w * grad_j_v : 0.0) + (model.coriolis ? dp : 0.0);
 }
 
 }  // namespace rotbeam

@@ -125,7 +125,8 @@ double ForeshorteningBeam::tip_excursion_bound(const Eigen::Ref<const Eigen::Vec
   if (!excursion_valid) return INFINITY;
   const double h = energy(q, qd, ws).jacobi;
   const double big_h = std::max(h - excursion_v0, 0.0);
-  const double beta = omega * omega * mass * excursion_mu * excursion_mu / (2.0 * length * length);
+  const double w2 = centrifugal ? omega * omega : 0.0;
+  const double beta = w2 * mass * excursion_mu * excursion_mu / (2.0 * length * length);
   const double e_now = 0.5 * detail::quadratic_form(linear_stiffness_, q);
   if (4.0 * beta * big_h >= 1.0 || 2.0 * beta * e_now > 1.0) return INFINITY;
   const double e1 = 2.0 * big_h / (1.0 + std::sqrt(1.0 - 4.0 * beta * big_h));
@@ -133,32 +134,6 @@ double ForeshorteningBeam::tip_excursion_bound(const Eigen::Ref<const Eigen::Vec
   const double x = excursion_mu * e1 / length;
   return std::hypot(x, y);
 }
-
-namespace {
-// C = M0 Φ diag(2ζ_iΩ_i) Φᵀ M0 with Φ mass-normalised (SPEC §11). M0 = m·1, so with the unit
-// eigenvectors V of K/m (Φ = V/√m) this is m V diag(2ζ_iΩ_i) Vᵀ.
-Eigen::MatrixXd modal_damping(const ForeshorteningBeam& m, const std::vector<double>& zeta) {
-  if (zeta.empty() || std::all_of(zeta.begin(), zeta.end(), [](double z) { return z == 0.0; }))
-    return Eigen::MatrixXd();
-  if (zeta.size() != 1 && static_cast<int>(zeta.size()) != m.n)
-    throw std::invalid_argument("damping ratio must have 1 or " + std::to_string(m.n) + " values, got " +
-                                std::to_string(zeta.size()));
-  const ModalAnalysis modes = modal_analysis(m);
-  Eigen::VectorXd rate(m.n);  // 2ζ_iΩ_i [1/s]
-  for (int i = 0; i < m.n; ++i) {
-    const double z = zeta.size() == 1 ? zeta[0] : zeta[static_cast<std::size_t>(i)];
-    if (!(z >= 0.0) || !std::isfinite(z))
-      throw std::invalid_argument("damping ratio must be >= 0 and finite, got " + std::to_string(z));
-    const double f = modes.frequencies_hz[i];
-    if (z > 0.0 && !(f > 0.0))
-      throw std::invalid_argument("mode " + std::to_string(i + 1) +
-                                  " has no positive frequency at this speed, so it cannot be given a damping ratio");
-    rate[i] = z > 0.0 ? 2.0 * z * 2.0 * M_PI * f : 0.0;
-  }
-  Eigen::MatrixXd c = m.mass * modes.shapes * rate.asDiagonal() * modes.shapes.transpose();
-  return 0.5 * (c + c.transpose());
-}
-}  // namespace
 
 ForeshorteningBeam make_beam(const BeamParameters& p, double theta0_rad) {
   auto positive = [](double v, const char* what) {
@@ -181,15 +156,17 @@ ForeshorteningBeam make_beam(const BeamParameters& p, double theta0_rad) {
   m.hub_radius = p.hub_radius_m;
   m.omega = p.speed_rpm * M_PI / 30.0;
   m.theta0 = theta0_rad;
+  m.centrifugal = p.centrifugal;
+  m.coriolis = p.coriolis;
   const double area = M_PI * p.diameter_m * p.diameter_m / 4.0;
   const double inertia = M_PI * std::pow(p.diameter_m, 4) / 64.0;
   m.mass_per_length = p.density_kg_m3 * area;
   m.bending_stiffness = p.youngs_modulus_pa * inertia;
   m.mass = m.mass_per_length * p.length_m;
   m.integrals = modal_integrals(p.modes);
-  m.damping = modal_damping(m, p.damping_ratio);
-  // The excursion bound's constants (tip_excursion_bound).
   m.linear_stiffness_ = linear_stiffness(m);
+  m.damping = modal_damping_matrix(m.mass * Eigen::MatrixXd::Identity(m.n, m.n), m.linear_stiffness_, p.damping_ratio);
+  // The excursion bound's constants (tip_excursion_bound).
   const Eigen::LLT<Eigen::MatrixXd> k_llt(m.linear_stiffness_);
   if (k_llt.info() == Eigen::Success) {
     Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> g(m.integrals->isp_tip, m.linear_stiffness_);
@@ -198,7 +175,7 @@ ForeshorteningBeam make_beam(const BeamParameters& p, double theta0_rad) {
       m.excursion_mu = std::max(g.eigenvalues().maxCoeff(), 0.0);
       m.excursion_tip_compliance = m.integrals->s_tip.dot(k_llt.solve(m.integrals->s_tip));
       const double rh = m.hub_radius, L = m.length;
-      m.excursion_v0 = -0.5 * m.omega * m.omega * m.mass * (rh * rh + rh * L + L * L / 3.0);
+      m.excursion_v0 = -0.5 * (m.centrifugal ? m.omega * m.omega : 0.0) * m.mass * (rh * rh + rh * L + L * L / 3.0);
     }
   }
   return m;

@@ -1,11 +1,14 @@
 #include "rotbeam/modal_analysis.hpp"
 
+#include "rotbeam/beam_factory.hpp"
 #include "rotbeam/dynamics.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 namespace rotbeam {
 
@@ -33,6 +36,31 @@ Eigen::VectorXd natural_frequencies_hz(const BeamModel& beam) {
   return f;
 }
 
+Eigen::MatrixXd modal_damping_matrix(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& stiffness,
+                                     const std::vector<double>& zeta) {
+  const int n = static_cast<int>(mass.rows());
+  if (zeta.empty() || std::all_of(zeta.begin(), zeta.end(), [](double z) { return z == 0.0; }))
+    return Eigen::MatrixXd();
+  if (zeta.size() != 1 && static_cast<int>(zeta.size()) != n)
+    throw std::invalid_argument("damping ratio must have 1 or " + std::to_string(n) + " values, got " +
+                                std::to_string(zeta.size()));
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> modes(stiffness, mass);
+  Eigen::VectorXd rate(n);  // 2ζ_iΩ_i [1/s]
+  for (int i = 0; i < n; ++i) {
+    const double z = zeta.size() == 1 ? zeta[0] : zeta[static_cast<std::size_t>(i)];
+    if (!(z >= 0.0) || !std::isfinite(z))
+      throw std::invalid_argument("damping ratio must be >= 0 and finite, got " + std::to_string(z));
+    const double lambda = modes.eigenvalues()[i];
+    if (z > 0.0 && !(lambda > 0.0))
+      throw std::invalid_argument("mode " + std::to_string(i + 1) +
+                                  " has no positive frequency at this speed, so it cannot be given a damping ratio");
+    rate[i] = z > 0.0 ? 2.0 * z * std::sqrt(lambda) : 0.0;
+  }
+  const Eigen::MatrixXd mphi = mass * modes.eigenvectors();  // M0 Φ
+  Eigen::MatrixXd c = mphi * rate.asDiagonal() * mphi.transpose();
+  return 0.5 * (c + c.transpose());
+}
+
 std::vector<double> default_mode_speeds_rpm(double case_speed_rpm) {
   std::vector<double> speeds = {0.0, 550.0, 1000.0, 2000.0, 3000.0, case_speed_rpm};
   std::sort(speeds.begin(), speeds.end());
@@ -47,7 +75,7 @@ Eigen::MatrixXd frequencies_versus_speed(const BeamParameters& base, const std::
   for (std::size_t s = 0; s < speeds_rpm.size(); ++s) {
     if (stop && stop->stop_requested()) break;
     p.speed_rpm = speeds_rpm[s];
-    f.row(static_cast<Eigen::Index>(s)) = modal_analysis(make_beam(p)).frequencies_hz.transpose();
+    f.row(static_cast<Eigen::Index>(s)) = natural_frequencies_hz(*make_beam_model(p)).transpose();
   }
   return f;
 }

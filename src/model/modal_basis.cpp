@@ -22,8 +22,8 @@ double cantilever_root(int i) {
 }
 
 ModalBasis::ModalBasis(int n) {
-  if (n < 1 || n > kMaxModes)
-    throw std::invalid_argument("number of modes must be in 1.." + std::to_string(kMaxModes) + ", got " +
+  if (n < 1 || n > kMaxElasticaModes)
+    throw std::invalid_argument("number of modes must be in 1.." + std::to_string(kMaxElasticaModes) + ", got " +
                                 std::to_string(n));
   root_.resize(n);
   sigma_.resize(n);

@@ -87,13 +87,15 @@ void PassRecorder::track(double t, const Eigen::VectorXd& q) {
   const double ratio = system_.beam.tip_deflection(q) / system_.beam.beam_length();
   if (ratio > result_.summary.max_tip_deflection_ratio) result_.summary.max_tip_deflection_ratio = ratio;
   rev_max_ratio_ = std::max(rev_max_ratio_, ratio);
-  if (options_.deflection_limit_is_error && ratio > options_.deflection_warning_ratio && !validity_breached_) {
+  // The deflection warning is the foreshortening model's (SPEC §10): the elastica's geometry is exact.
+  const bool limited = !system_.beam.geometrically_exact();
+  if (limited && options_.deflection_limit_is_error && ratio > options_.deflection_warning_ratio && !validity_breached_) {
     validity_breached_ = true;
     validity_ratio_ = ratio;
   }
-  if (ratio > options_.deflection_warning_ratio && result_.summary.validity == Validity::within)
+  if (limited && ratio > options_.deflection_warning_ratio && result_.summary.validity == Validity::within)
     result_.summary.validity = Validity::edge;
-  if (!deflection_warned_ && ratio > options_.deflection_warning_ratio) {
+  if (limited && !deflection_warned_ && ratio > options_.deflection_warning_ratio) {
     deflection_warned_ = true;
     std::ostringstream s;
     s << "tip deflection exceeds " << options_.deflection_warning_ratio

@@ -1,4 +1,5 @@
 #include "rotbeam/case.hpp"
+#include "rotbeam/beam_factory.hpp"
 #include "rotbeam/modal_analysis.hpp"
 #include "rotbeam/steady_state.hpp"
 
@@ -16,7 +17,7 @@ Case build_case(const Config& config) {
                       "(rotbeam brush, rotbeam.brush), not as one filament's pass");
   Case c;
   try {
-    auto beam = std::make_shared<ForeshorteningBeam>(make_beam(config.beam));
+    auto beam = make_beam_model(config.beam);
     c.surface = make_surface(config.surface, *beam);
     c.beam = std::move(beam);
   } catch (const std::invalid_argument& e) {

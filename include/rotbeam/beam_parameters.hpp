@@ -1,0 +1,39 @@
+// The filament on its hub as a configuration describes it (SPEC §1, §9, §11): its material and
+// section, the hub, the number of assumed modes, the beam theory and the rotation terms kept.
+// Every beam model is built from these (beam_factory.hpp).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace rotbeam {
+
+/// beam.theory: the thesis's quadratic foreshortening (SPEC §2–§3) or the geometrically exact
+/// planar elastica (SPEC §11).
+enum class BeamTheory { foreshortening, elastica };
+
+/// "foreshortening" / "elastica".
+const char* beam_theory_name(BeamTheory theory);
+
+/// Inputs of the filament on its hub, SI units (defaults: thesis Table 5-1, 550 rpm, 5 modes).
+struct BeamParameters {
+  double length_m = 0.0635;          // L
+  double diameter_m = 5.08e-4;       // D (circular section)
+  double density_kg_m3 = 7800.0;     // ρ
+  double youngs_modulus_pa = 2.2e11; // E
+  int modes = 5;                     // n
+  double hub_radius_m = 0.0635;      // r_h
+  double speed_rpm = 550.0;          // hub spin
+  // Modal damping ratios ζ_i of the linearised modes at the hub speed (SPEC §11): empty for none,
+  // one value for every mode, or n values (mode order: ascending frequency).
+  std::vector<double> damping_ratio;
+  BeamTheory theory = BeamTheory::foreshortening;  // beam.theory
+  // The rotation terms of the filament's kinetic energy T = T2 + T1 + T0 (docs/model.md "Switches
+  // for the rotation terms"): model.centrifugal keeps T0 = ½ω²∫(x² + y²)dm (centrifugal stiffening
+  // and spin softening), model.coriolis keeps T1 = ω∫(xẏ − yẋ)dm (the gyroscopic coupling). The
+  // hub's rotation of the frame, and so the contact's kinematics, is kept either way.
+  bool centrifugal = true;
+  bool coriolis = true;
+};
+
+}  // namespace rotbeam

@@ -1,0 +1,34 @@
+// The static equilibrium of the filament in the hub frame under a dead load P at its tip, normal
+// to the undeformed filament (along the hub frame's y, the sense of rotation for P > 0), at rest or
+// spinning (docs/model.md "Static equilibrium"; `rotbeam static`):
+//
+//   Ψ(q, 0) = P ∂y_t/∂q,
+//
+// Ψ(q, 0) holding the bending and (when kept) the centrifugal forces of the beam model. The large
+// deflection of a cantilever under a tip load is how brush stiffness was first modelled (Stango,
+// Heinrich & Shia 1989); at 0 rpm the elastica's answer is the Bisshopp–Drucker elastica.
+#pragma once
+
+#include "rotbeam/beam_model.hpp"
+#include "rotbeam/stop_token.hpp"
+
+#include <Eigen/Core>
+
+namespace rotbeam {
+
+struct StaticEquilibrium {
+  Eigen::VectorXd q;          // modal coordinates [m]
+  double tip_x = 0, tip_y = 0;  // tip in the hub frame, x from the hub centre along the undeformed filament [m]
+  double residual = 0;        // |Ψ(q, 0) − P ∂y_t/∂q|∞ at the answer [N]
+  int iterations = 0;         // Newton iterations, all load steps together
+  int load_steps = 0;         // load increments taken (the load is applied in steps where Newton needs them)
+};
+
+/// Solves for the equilibrium under tip load `tip_load_n` [N] by Newton's method on q with a
+/// finite-difference Jacobian and a backtracking line search, from the straight filament, applying
+/// the load in increments that are halved where an increment fails. Converged when a Newton step
+/// moves q by less than 1e-13 L. Throws std::runtime_error naming the load reached when no
+/// equilibrium is found, and when `stop` is requested.
+StaticEquilibrium static_equilibrium(const BeamModel& beam, double tip_load_n, const StopToken* stop = nullptr);
+
+}  // namespace rotbeam
