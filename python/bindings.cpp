@@ -5,7 +5,9 @@
 #include "rotbeam/case.hpp"
 #include "rotbeam/process_memory.hpp"
 #include "rotbeam/impact_output.hpp"
+#include "rotbeam/beam_factory.hpp"
 #include "rotbeam/modal_analysis.hpp"
+#include "rotbeam/static_equilibrium.hpp"
 #include "rotbeam/pass_output.hpp"
 #include "rotbeam/sweep.hpp"
 #include "rotbeam/version.hpp"
@@ -197,6 +199,28 @@ py::tuple modes(const std::optional<std::string>& path, const Values& overrides,
   return py::make_tuple(speeds, freq);
 }
 
+// The static equilibrium under a tip load (`rotbeam static --json`): tip_x_m, tip_y_m, q, ….
+py::dict static_load(const std::optional<std::string>& path, const Values& overrides, double tip_load_n) {
+  if (!std::isfinite(tip_load_n)) throw ConfigError("tip_load_n = " + shortest(tip_load_n) + ": must be a finite number of newtons");
+  const Config config = load(path, overrides);
+  if (config.brush) throw ConfigError("brush: static takes one filament's configuration, not a brush's");
+  const auto beam = make_beam_model(config.beam);
+  const StaticEquilibrium s =
+      interruptible([&](const StopToken& stop) { return static_equilibrium(*beam, tip_load_n, &stop); });
+  py::dict d;
+  d["theory"] = beam_theory_name(config.beam.theory);
+  d["modes"] = config.beam.modes;
+  d["speed_rpm"] = config.beam.speed_rpm;
+  d["tip_load_n"] = tip_load_n;
+  d["tip_x_m"] = s.tip_x;
+  d["tip_y_m"] = s.tip_y;
+  d["q"] = py::array_t<double>(static_cast<py::ssize_t>(s.q.size()), s.q.data());
+  d["residual_n"] = s.residual;
+  d["iterations"] = s.iterations;
+  d["load_steps"] = s.load_steps;
+  return d;
+}
+
 // The filament's centreline in the hub frame for each row of q (frames × n) at the points xi
 // (ascending in [0, 1]): an array frames × points × 2 [m] (BeamModel::shape).
 py::array_t<double> filament_shape(const std::optional<std::string>& path, const Values& overrides,
@@ -380,6 +404,8 @@ PYBIND11_MODULE(_core, m) {
         "The first impact as a dict (the fields of `rotbeam impact --json`), or None without impact.");
   m.def("modes", &modes, py::arg("path"), py::arg("overrides"), py::arg("speeds_rpm"),
         "Natural frequencies: (speeds_rpm array, frequencies_hz 2-D array); None means the default speeds.");
+  m.def("static", &static_load, py::arg("path"), py::arg("overrides"), py::arg("tip_load_n"),
+        "The static equilibrium under a tip load normal to the undeformed filament (rotbeam static --json).");
   m.def("filament_shape", &filament_shape, py::arg("path"), py::arg("overrides"), py::arg("q"), py::arg("xi"),
         "The centreline in the hub frame [m] for each row of q (frames x n) at the points xi: frames x points x 2.");
   m.def("config_keys", &config_keys, "Every configuration key, 'section.key'.");

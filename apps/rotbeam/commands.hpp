@@ -18,5 +18,7 @@ Command add_plot_command(CLI::App& app);
 Command add_animate_command(CLI::App& app);
 Command add_reproduce_command(CLI::App& app);
 Command add_brush_command(CLI::App& app);
+Command add_static_command(CLI::App& app);
+Command add_theories_command(CLI::App& app);
 
 }  // namespace rotbeam::cli

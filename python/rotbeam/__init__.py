@@ -56,7 +56,7 @@ if TYPE_CHECKING:  # only for the annotations: xarray is imported when a Dataset
 __version__: str = _core.__version__
 """rotbeam's version (project(VERSION) in CMakeLists.txt, the one place it is set)."""
 
-__all__ = ["run", "impact", "modes", "brush", "sweep", "open_sweep", "Result", "BrushResult", "ConfigError",
+__all__ = ["run", "impact", "modes", "static", "brush", "sweep", "open_sweep", "Result", "BrushResult", "ConfigError",
            "ConfigFileNotFoundError", "config_keys", "__version__"]
 
 # What `config` may be: a TOML file's path, a dict shaped like the file, or None for the defaults.
@@ -326,6 +326,18 @@ def impact(config: ConfigLike = None, overrides: Overrides = None) -> dict[str, 
     reaches the surface before the end angle. config and overrides as for run()."""
     path, sets = _arguments(config, overrides)
     return _core.impact(path, sets)
+
+
+def static(tip_load_n: float, config: ConfigLike = None, overrides: Overrides = None) -> dict[str, Any]:
+    """The static equilibrium of the filament in the hub frame under a dead load tip_load_n [N] at its
+    tip, normal to the undeformed filament (`rotbeam static --json`), for the configuration's
+    beam.theory, at rest or spinning: a dict with tip_x_m and tip_y_m (the tip in the hub frame, x
+    from the hub centre along the undeformed filament), q (modal coordinates, m), residual_n,
+    iterations, load_steps. config and overrides as for run()."""
+    if isinstance(tip_load_n, bool) or not isinstance(tip_load_n, (int, float)):
+        raise ConfigError(f"tip_load_n = {tip_load_n!r}: give a number of newtons")
+    path, sets = _arguments(config, overrides)
+    return _core.static(path, sets, float(tip_load_n))
 
 
 def _speeds(speeds_rpm: Any) -> list[float]:
