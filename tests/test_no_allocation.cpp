@@ -2,6 +2,7 @@
 // The test is linked with -Wl,--wrap=malloc, so every malloc made by the (static) library's code
 // goes through __wrap_malloc below and is counted while `counting` is set.
 #include "rotbeam/dynamics.hpp"
+#include "rotbeam/elastica_beam.hpp"
 #include "rotbeam/impact.hpp"
 #include "rotbeam/kinematics.hpp"
 #include "rotbeam/rk5.hpp"
@@ -83,6 +84,38 @@ TEST(NoAllocation, CurvedSurfacesContactGeometry) {
       counting = false;
       EXPECT_EQ(allocations.load(), 0) << "n = " << n << " " << s->describe().dump();
     }
+  }
+}
+
+TEST(NoAllocation, TheElasticasEvaluationsAndAStepOfAPass) {
+  // The elastica's dynamics, energies, tip, momentum rate and excursion bound, the contact
+  // kinematics and an impact, at 5 modes (fixed-size kernels of small products) and 40 (Eigen's
+  // products at sizes that would use its blocking buffers): nothing on the heap.
+  for (int n : {5, 40}) {
+    BeamParameters p;
+    p.modes = n;
+    const ElasticaBeam model = make_elastica(p);
+    const Plane plane = plane_at_depth(model, 0.02);
+    auto ws = model.make_workspace();
+    TipKinematics tip(n);
+    HubFrameTip hub_tip(n);
+    Eigen::VectorXd q = Eigen::VectorXd::Constant(n, 1e-3), v = Eigen::VectorXd::Constant(n, 0.3), a(n);
+    const double t = model.time_at(-0.2);
+    acceleration(model, q, v, nullptr, *ws, a);  // warm-up
+    Eigen::VectorXd qd = v;
+    qd[0] += 5.0;
+    allocations = 0;
+    counting = true;
+    acceleration(model, q, v, nullptr, *ws, a);
+    const EnergyTerms e = model.energy(q, v, *ws);
+    const double rate = model.angular_momentum_rate(q, v, a, *ws);
+    const double bound = model.tip_excursion_bound(q, v, *ws);
+    model.tip(q, v, hub_tip);
+    tip_kinematics(model, plane, t, q, qd, tip);
+    if (tip.gap_rate > 0) apply_impact(model, plane, ImpactLaw{}, t, q, qd, *ws, tip);
+    counting = false;
+    EXPECT_EQ(allocations.load(), 0) << "n = " << n;
+    EXPECT_TRUE(a.allFinite() && std::isfinite(e.jacobi) && std::isfinite(rate) && std::isfinite(bound));
   }
 }
 

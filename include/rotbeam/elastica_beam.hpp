@@ -36,8 +36,14 @@ struct ElasticaWorkspace : BeamWorkspace {
   Eigen::VectorXd xd, yd;           // velocity relative to the hub frame [m/s]
   Eigen::VectorXd ax, ay;           // a_q: relative acceleration without q̈ [m/s²]
   Eigen::VectorXd fx, fy;           // inertial acceleration less J q̈, weighted [m/s²]
-  Eigen::MatrixXd jx, jy;           // ∂x/∂q, ∂y/∂q (nodes × n, dimensionless)
-  Eigen::MatrixXd integrand;        // nodes × n scratch
+  // The running integrals of the geometry (columns cos φ, sin φ, then ∂x/∂q and ∂y/∂q) and of the
+  // rates, from their integrands; a row of panel starts.
+  Eigen::MatrixXd integrand, integral;            // nodes × (2n + 2)
+  Eigen::MatrixXd rate_integrand, rate_integral;  // nodes × 4
+  Eigen::RowVectorXd start;
+  /// ∂x/∂q, ∂y/∂q at the nodes (nodes × n, dimensionless).
+  auto jx() { return integral.middleCols(2, n); }
+  auto jy() { return integral.middleCols(2 + n, n); }
 };
 
 class ElasticaBeam final : public BeamModel {
@@ -102,6 +108,9 @@ public:
 
   /// The node count and its layout.
   int nodes() const { return static_cast<int>(node_xi.size()); }
+  /// The running integrals of every column of f (nodes × c) into out (the same shape), with
+  /// `start` (at least c long) as scratch: out_m = ∫₀^{ξ_m} f dξ, one panel product for all columns.
+  void running_integrals(const Eigen::MatrixXd& f, Eigen::MatrixXd& out, Eigen::RowVectorXd& start) const;
   /// Running integral over ξ of the node values f (nodes long) into out: out_m = ∫₀^{ξ_m} f dξ;
   /// returns ∫₀¹ f dξ.
   double running_integral(const double* f, double* out) const;

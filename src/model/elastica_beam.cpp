@@ -21,7 +21,8 @@ ElasticaWorkspace::ElasticaWorkspace(int size, int nodes)
     : BeamWorkspace(size),
       phi(nodes), phid(nodes), cos_phi(nodes), sin_phi(nodes),
       x(nodes), y(nodes), xd(nodes), yd(nodes), ax(nodes), ay(nodes), fx(nodes), fy(nodes),
-      jx(nodes, size), jy(nodes, size), integrand(nodes, size) {}
+      integrand(nodes, 2 * size + 2), integral(nodes, 2 * size + 2), rate_integrand(nodes, 4), rate_integral(nodes, 4),
+      start(2 * size + 2) {}
 
 namespace {
 
@@ -33,34 +34,34 @@ ElasticaWorkspace& own(BeamWorkspace& ws) {
   return static_cast<ElasticaWorkspace&>(ws);
 }
 
-// φ at every node, its cosine and sine, the position r(ξ_m) and the Jacobians J = ∂r/∂q.
+// φ at every node, its cosine and sine, the position r(ξ_m) and the Jacobians J = ∂r/∂q, all of
+// their running integrals at once.
 void geometry(const ElasticaBeam& b, const Eigen::Ref<const Eigen::VectorXd>& q, ElasticaWorkspace& ws) {
   const double L = b.length;
+  const int n = b.n;
   ws.phi.noalias() = b.slope * q;
   ws.phi /= L;
   ws.cos_phi = ws.phi.array().cos();
   ws.sin_phi = ws.phi.array().sin();
-  b.running_integral(ws.cos_phi.data(), ws.x.data());
-  b.running_integral(ws.sin_phi.data(), ws.y.data());
-  ws.x = (ws.x * L).array() + b.hub_radius;
-  ws.y *= L;
-  // ∂x/∂q_i = −∫₀^ξ sin φ S_i' dξ, ∂y/∂q_i = ∫₀^ξ cos φ S_i' dξ.
-  for (int i = 0; i < b.n; ++i) {
-    ws.integrand.col(i) = -ws.sin_phi.cwiseProduct(b.slope.col(i));
-    b.running_integral(ws.integrand.col(i).data(), ws.jx.col(i).data());
-    ws.integrand.col(i) = ws.cos_phi.cwiseProduct(b.slope.col(i));
-    b.running_integral(ws.integrand.col(i).data(), ws.jy.col(i).data());
-  }
+  // Columns: cos φ, sin φ, −sin φ S_i' (→ ∂x/∂q_i), cos φ S_i' (→ ∂y/∂q_i).
+  ws.integrand.col(0) = ws.cos_phi;
+  ws.integrand.col(1) = ws.sin_phi;
+  ws.integrand.middleCols(2, n) = -(b.slope.array().colwise() * ws.sin_phi.array());
+  ws.integrand.middleCols(2 + n, n) = b.slope.array().colwise() * ws.cos_phi.array();
+  b.running_integrals(ws.integrand, ws.integral, ws.start);
+  ws.x = (ws.integral.col(0) * L).array() + b.hub_radius;
+  ws.y = ws.integral.col(1) * L;
 }
 
 // M = ρA L Σ_m w_m (J_x,mᵀ J_x,m + J_y,mᵀ J_y,m), from the Jacobians of geometry().
 void mass_matrix(const ElasticaBeam& b, ElasticaWorkspace& ws) {
   const double c = b.mass_per_length * b.length;
-  for (int i = 0; i < b.n; ++i) ws.integrand.col(i) = b.node_weight.cwiseProduct(ws.jx.col(i));
-  for (int i = 0; i < b.n; ++i)
+  const int n = b.n;
+  // The weighted Jacobians, in the integrand's columns (geometry() is done with them).
+  ws.integrand.middleCols(0, 2 * n) = ws.integral.middleCols(2, 2 * n).array().colwise() * b.node_weight.array();
+  for (int i = 0; i < n; ++i)
     for (int j = 0; j <= i; ++j) {
-      const double mij = c * (ws.integrand.col(i).dot(ws.jx.col(j)) +
-                              b.node_weight.cwiseProduct(ws.jy.col(i)).dot(ws.jy.col(j)));
+      const double mij = c * (ws.integrand.col(i).dot(ws.jx().col(j)) + ws.integrand.col(n + i).dot(ws.jy().col(j)));
       ws.mass(i, j) = mij;
       ws.mass(j, i) = mij;
     }
@@ -72,21 +73,32 @@ void rates(const ElasticaBeam& b, const Eigen::Ref<const Eigen::VectorXd>& qd, E
   ws.phid.noalias() = b.slope * qd;
   ws.phid /= L;
   // ẋ = −L∫ sin φ φ̇ dξ, ẏ = L∫ cos φ φ̇ dξ; a_q,x = −L∫ cos φ φ̇² dξ, a_q,y = −L∫ sin φ φ̇² dξ.
-  ws.fx = -ws.sin_phi.cwiseProduct(ws.phid);
-  b.running_integral(ws.fx.data(), ws.xd.data());
-  ws.fy = ws.cos_phi.cwiseProduct(ws.phid);
-  b.running_integral(ws.fy.data(), ws.yd.data());
-  ws.fx = -ws.cos_phi.cwiseProduct(ws.phid.cwiseAbs2());
-  b.running_integral(ws.fx.data(), ws.ax.data());
-  ws.fy = -ws.sin_phi.cwiseProduct(ws.phid.cwiseAbs2());
-  b.running_integral(ws.fy.data(), ws.ay.data());
-  ws.xd *= L;
-  ws.yd *= L;
-  ws.ax *= L;
-  ws.ay *= L;
+  ws.rate_integrand.col(0) = -ws.sin_phi.cwiseProduct(ws.phid);
+  ws.rate_integrand.col(1) = ws.cos_phi.cwiseProduct(ws.phid);
+  ws.rate_integrand.col(2) = -ws.cos_phi.cwiseProduct(ws.phid.cwiseAbs2());
+  ws.rate_integrand.col(3) = -ws.sin_phi.cwiseProduct(ws.phid.cwiseAbs2());
+  b.running_integrals(ws.rate_integrand, ws.rate_integral, ws.start);
+  ws.xd = ws.rate_integral.col(0) * L;
+  ws.yd = ws.rate_integral.col(1) * L;
+  ws.ax = ws.rate_integral.col(2) * L;
+  ws.ay = ws.rate_integral.col(3) * L;
 }
 
 }  // namespace
+
+void ElasticaBeam::running_integrals(const Eigen::MatrixXd& f, Eigen::MatrixXd& out, Eigen::RowVectorXd& start) const {
+  const Eigen::Index cols = f.cols();
+  const double half = 0.5 / panels;  // the panel's half-width in ξ
+  auto s = start.head(cols);
+  s.setZero();
+  for (int p = 0; p < panels; ++p) {
+    auto fp = f.middleRows<K>(p * K);
+    auto op = out.middleRows<K>(p * K);
+    op.noalias() = half * running * fp;
+    op.rowwise() += s;
+    s.noalias() += half * reference_weight.transpose() * fp;
+  }
+}
 
 double ElasticaBeam::running_integral(const double* f, double* out) const {
   double start = 0.0;
@@ -124,8 +136,8 @@ void ElasticaBeam::evaluate_dynamics(const Eigen::Ref<const Eigen::VectorXd>& q,
   ws.fx = node_weight.cwiseProduct(ws.ax - cw * ws.yd - w2 * ws.x);
   ws.fy = node_weight.cwiseProduct(ws.ay + cw * ws.xd - w2 * ws.y);
   const double c = mass_per_length * length;
-  ws.psi.noalias() = ws.jx.transpose() * ws.fx;
-  ws.psi.noalias() += ws.jy.transpose() * ws.fy;
+  ws.psi.noalias() = ws.jx().transpose() * ws.fx;
+  ws.psi.noalias() += ws.jy().transpose() * ws.fy;
   ws.psi *= c;
   ws.psi += (bending_stiffness / (length * length * length)) * r4.cwiseProduct(q);
   if (damped()) ws.psi.noalias() += damping * qd;
@@ -233,9 +245,9 @@ double ElasticaBeam::angular_momentum_rate(const Eigen::Ref<const Eigen::VectorX
   if (centrifugal) rate += 2.0 * omega * c * node_weight.dot(ws.x.cwiseProduct(ws.xd) + ws.y.cwiseProduct(ws.yd));
   if (coriolis) {
     // ẍ = J_x q̈ + a_q,x, ÿ = J_y q̈ + a_q,y.
-    ws.fx.noalias() = ws.jx * qdd;
+    ws.fx.noalias() = ws.jx() * qdd;
     ws.fx += ws.ax;
-    ws.fy.noalias() = ws.jy * qdd;
+    ws.fy.noalias() = ws.jy() * qdd;
     ws.fy += ws.ay;
     rate += c * node_weight.dot(ws.x.cwiseProduct(ws.fy) - ws.y.cwiseProduct(ws.fx));
   }
