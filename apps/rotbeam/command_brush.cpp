@@ -30,7 +30,7 @@ void print_summary(const Config& config, const BrushResult& r, const std::string
   std::cout << "Brush: " << s.filaments << " filaments (" << b.filaments << " around × " << b.rows << " rows, "
             << s.distinct_filaments << " distinct), " << number_text(config.beam.speed_rpm) << " rpm, "
             << surface_text(config) << ", μ = " << config.contact.friction.mu << ", "
-            << config.beam.modes << " modes\n";
+            << modes_text(config) << "\n";
   std::cout << "  filaments             " << s.steady << " steady, " << s.not_steady << " not steady, " << s.failed
             << " failed, " << s.filaments - s.reaching << " clear of the surface\n";
   std::cout << "  mean force            " << fixed(s.mean_normal_force_n, 4) << " N normal, "

@@ -103,7 +103,7 @@ int run_converge(const ConvergeOptions& o) {
   const PassSummary& ref = study.runs.front().summary;
   std::cout << "Convergence of " << given_text(config.beam.speed_rpm) << " rpm, "
             << surface_text(config) << ", μ = " << given_text(config.contact.friction.mu) << ", "
-            << config.beam.modes << " modes; differences (Δ) from " << study.runs.front().label << "\n\n";
+            << modes_text(config) << "; differences (Δ) from " << study.runs.front().label << "\n\n";
   std::printf("%-32s %9s %9s %5s %5s %10s %11s %9s %11s %10s %10s %9s %8s\n", "run", "sep_deg", "Δsep_deg", "imp",
               "epis", "t_cont_ms", "impulse_mNs", "Δimp_rel", "peak_Fn_N", "Δpeak_rel", "W_f_mJ", "Δcont_rel",
               "wall_s");

@@ -58,7 +58,7 @@ int run_impact(const ImpactOptions& o) {
     start += "] m/s";
   }
   std::cout << "First impact: " << given_text(config.beam.speed_rpm) << " rpm, "
-            << surface_text(config) << ", " << config.beam.modes << " modes, "
+            << surface_text(config) << ", " << modes_text(config) << ", "
             << start << "\n"
             << "  time             t       = " << fixed(r.t, 7) << " s\n"
             << "  hub angle        θ       = " << fixed(theta_deg, 4) << " deg\n"

@@ -26,7 +26,7 @@ void print_summary(const Config& config, const PassResult& r, const std::string&
   const PassSummary& s = r.summary;
   std::cout << "Pass: " << given_text(config.beam.speed_rpm) << " rpm, "
             << surface_text(config) << ", μ = " << given_text(config.contact.friction.mu) << ", "
-            << config.beam.modes << " modes, " << config.initial.start << " start, " << scheme_name(s.scheme)
+            << modes_text(config) << ", " << config.initial.start << " start, " << scheme_name(s.scheme)
             << " scheme\n";
   // A pass that stopped says so first: `run > summary.txt` kept a complete-looking summary of a
   // partial pass, the failure being on stderr only.

@@ -86,11 +86,11 @@ int run_theories(const TheoriesOptions& o) {
   }
   std::cout << "Both beam theories: " << given_text(config.beam.speed_rpm) << " rpm, " << surface_text(config)
             << ", μ = " << given_text(config.contact.friction.mu) << ", " << config.beam.modes << " modes\n\n";
-  std::printf("%-16s %12s %12s %12s %12s %12s %7s %7s %8s\n", "theory", "sep_deg", "impulse_mNs", "peak_Fn_N",
+  std::printf("%-16s %12s %12s %12s %12s %12s %8s %8s %8s\n", "theory", "sep_deg", "impulse_mNs", "peak_Fn_N",
               "t_cont_ms", "max|y_t|/L", "impacts", "episodes", "wall_s");
   for (std::size_t k = 0; k < kTheories.size(); ++k) {
     const PassSummary& s = out[k].summary;
-    std::printf("%-16s %s %s %s %s %s %7d %7d %8.3f%s\n", beam_theory_name(kTheories[k]),
+    std::printf("%-16s %s %s %s %s %s %8d %8d %8.3f%s\n", beam_theory_name(kTheories[k]),
                 cell(s.last_separation_deg, "%12.4f").c_str(), cell(s.normal_impulse_n_s * 1e3, "%12.6f").c_str(),
                 cell(s.peak_normal_force_n, "%12.5f").c_str(), cell(s.contact_time_s * 1e3, "%12.5f").c_str(),
                 cell(s.max_tip_deflection_ratio, "%12.5f").c_str(), s.impacts, s.contact_episodes, s.wall_time_s,

@@ -225,6 +225,16 @@ CLI::Validator non_empty_path() {
 
 std::string path_text(const std::string& path) { return path.empty() ? "\"\"" : printable(path); }
 
+std::string modes_text(const Config& config) {
+  const BeamParameters& b = config.beam;
+  std::string s = std::to_string(b.modes) + (b.modes == 1 ? " mode" : " modes");
+  if (b.theory != BeamTheory::foreshortening) s += std::string(", ") + beam_theory_name(b.theory);
+  if (!b.centrifugal && !b.coriolis) s += ", without the rotation terms";
+  else if (!b.centrifugal) s += ", without the centrifugal terms";
+  else if (!b.coriolis) s += ", without the Coriolis terms";
+  return s;
+}
+
 std::string surface_text(const Config& config) {
   const SurfaceParameters& s = config.surface;
   const std::string depth = "depth " + percent_text(s.depth_fraction) + " %";

@@ -136,6 +136,9 @@ std::string percent_text(double fraction);
 /// The surface of a case for a header line: "depth 2.00 %" (plane), "cylinder R 30 mm at -500 rpm,
 /// depth 2.00 %", "casing clearance 0.1 mm, 2 lobes of 0.3 mm" (docs/surfaces.md).
 std::string surface_text(const Config& config);
+/// "5 modes", with the beam theory and the rotation terms where they are not the thesis's
+/// ("5 modes, elastica, without the Coriolis terms").
+std::string modes_text(const Config& config);
 
 /// Checks, before any work, a file the user named for an option: not a folder, in a folder that
 /// exists, and (when `suffixes` is not empty) ending in one of them. Throws ConfigError naming the

@@ -254,10 +254,22 @@ def surface_words(config):
     return depth
 
 
+def modes_words(c):
+    """'5 modes', with the beam theory and the rotation terms where they are not the thesis's."""
+    words = f"{c['beam']['modes']} mode{'' if c['beam']['modes'] == 1 else 's'}"
+    if c["beam"].get("theory", "foreshortening") != "foreshortening":
+        words += f", {c['beam']['theory']}"
+    model = c.get("model", {})
+    off = [name for name in ("centrifugal", "Coriolis") if model.get(name.lower(), True) is False]
+    if off:
+        words += ", without the " + (" and ".join(off) if len(off) < 2 else "rotation") + " terms"
+    return words
+
+
 def case_title(summary):
     c = summary["config"]
     return (f"{c['hub']['speed_rpm']:g} rpm, {surface_words(c)}, "
-            f"μ = {c['surface']['friction']:g}, {c['beam']['modes']} modes, {summary['scheme']} scheme")
+            f"μ = {c['surface']['friction']:g}, {modes_words(c)}, {summary['scheme']} scheme")
 
 
 class DamagedFolder(Exception):
