@@ -218,6 +218,7 @@ py::dict static_load(const std::optional<std::string>& path, const Values& overr
   d["residual_n"] = s.residual;
   d["iterations"] = s.iterations;
   d["load_steps"] = s.load_steps;
+  d["warnings"] = static_warnings(*beam, s, tip_load_n, config.simulation.deflection_warning_ratio);
   return d;
 }
 

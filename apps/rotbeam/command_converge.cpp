@@ -2,6 +2,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 
+#include "rotbeam/beam_factory.hpp"
 #include "rotbeam/convergence.hpp"
 #include "rotbeam/detail/parse.hpp"
 
@@ -24,7 +25,7 @@ struct ConvergeOptions {
 };
 
 template <class T>
-std::vector<T> parse_list(const std::string& text, const std::string& option) {
+std::vector<T> parse_list(const std::string& text, const std::string& option, int max_modes = kMaxModes) {
   std::vector<T> out;
   std::stringstream ss(text);
   for (std::string item; std::getline(ss, item, ',');) {
@@ -32,7 +33,8 @@ std::vector<T> parse_list(const std::string& text, const std::string& option) {
     if (!detail::parse_finite_number(item, v) || !(v > 0))
       throw ConfigError(option + " " + text + ": '" + item + "' is not a positive number");
     if constexpr (std::is_integral_v<T>) {
-      if (v != std::floor(v) || v > kMaxModes) throw ConfigError(option + " " + text + ": '" + item + "' must be a whole number of modes up to " + std::to_string(kMaxModes));
+      if (v != std::floor(v) || v > max_modes)
+        throw ConfigError(option + " " + text + ": '" + item + "' must be a whole number of modes up to " + std::to_string(max_modes));
     }
     out.push_back(static_cast<T>(v));
   }
@@ -63,7 +65,7 @@ int run_converge(const ConvergeOptions& o) {
   ConvergenceLadder ladder;
   if (!o.rtols.empty()) ladder.rtols = parse_list<double>(o.rtols, "--rtols");
   if (!o.steps.empty()) ladder.thesis_free_steps = parse_list<double>(o.steps, "--steps");
-  if (!o.modes.empty()) ladder.modes = parse_list<int>(o.modes, "--modes");
+  if (!o.modes.empty()) ladder.modes = parse_list<int>(o.modes, "--modes", max_modes(config.beam.theory));
   for (double r : ladder.rtols) check_as_key("--rtols", o.rtols, "simulation.rtol", r);
   for (double h : ladder.thesis_free_steps) {  // contact step h/10, fine step h/100
     check_as_key("--steps", o.steps, "simulation.free_step_s", h);

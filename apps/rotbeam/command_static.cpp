@@ -39,6 +39,7 @@ int run_static(const StaticOptions& o) {
   const double d = config.beam.diameter_m;
   const double ei = config.beam.youngs_modulus_pa * M_PI * std::pow(d, 4) / 64.0;
   const double load_parameter = o.tip_load_n * L * L / ei;
+  const std::vector<std::string> warnings = static_warnings(*beam, s, o.tip_load_n, config.simulation.deflection_warning_ratio);
   if (o.json) {
     nlohmann::json j = {{"theory", beam_theory_name(config.beam.theory)},
                         {"modes", config.beam.modes},
@@ -52,7 +53,9 @@ int run_static(const StaticOptions& o) {
                         {"q", std::vector<double>(s.q.data(), s.q.data() + s.q.size())},
                         {"residual_n", s.residual},
                         {"iterations", s.iterations},
-                        {"load_steps", s.load_steps}};
+                        {"load_steps", s.load_steps},
+                        {"load_scale_n", s.load_scale},
+                        {"warnings", warnings}};
     std::cout << j.dump(2) << "\n";
     return kSuccess;
   }
@@ -70,6 +73,7 @@ int run_static(const StaticOptions& o) {
   for (Eigen::Index i = 0; i < s.q.size(); ++i) std::cout << " " << number_text(s.q[i]);
   std::cout << " m\n  Newton: " << s.iterations << " iterations in " << s.load_steps << " load step"
             << (s.load_steps == 1 ? "" : "s") << ", residual " << number_text(s.residual) << " N\n";
+  for (const std::string& w : warnings) std::cout << "  warning: " << w << "\n";
   return kSuccess;
 }
 

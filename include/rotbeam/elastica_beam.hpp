@@ -55,6 +55,7 @@ public:
   double length = 0, hub_radius = 0, omega = 0, theta0 = 0;  // L, r_h [m], ω [rad/s], θ0 [rad]
   double mass_per_length = 0, bending_stiffness = 0, mass = 0;  // ρA [kg/m], EI [N m²], m [kg]
   bool centrifugal = true, coriolis = true;                   // the rotation terms kept
+  std::shared_ptr<const ModalBasis> basis;  // S_i and its derivatives (for the centreline at any ξ)
   Eigen::VectorXd r4;           // r_i⁴
   // The quadrature: `panels` equal panels of kPanelPoints Legendre nodes on ξ ∈ [0, 1].
   int panels = 0;
@@ -88,7 +89,7 @@ public:
              Eigen::Ref<Eigen::MatrixXd> positions) const override;
   /// |y_t| = |∫ sin φ ds|.
   double tip_deflection(const Eigen::Ref<const Eigen::VectorXd>& q) const override;
-  /// T0 = ½ω²ρA∫|r|², T1 = ωρA∫(xẏ − yẋ), T2 = ½q̇ᵀMq̇, U = ½(EI/L³)Σr_i⁴q_i² (each rotation term
+  /// T0 = ½ω²ρA∫|r|², T1 = ωρA∫(xẏ − yẋ), T2 = ½ρA∫|ṙ|² = ½q̇ᵀMq̇, U = ½(EI/L³)Σr_i⁴q_i² (each rotation term
   /// only when kept), h = T2 − T0 + U, H_z = ω J + ∫(xẏ − yẋ)dm with the same switches.
   EnergyTerms energy(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qd,
                      BeamWorkspace& ws) const override;

@@ -13,6 +13,8 @@
 #include "rotbeam/stop_token.hpp"
 
 #include <Eigen/Core>
+#include <string>
+#include <vector>
 
 namespace rotbeam {
 
@@ -22,13 +24,24 @@ struct StaticEquilibrium {
   double residual = 0;        // |Ψ(q, 0) − P ∂y_t/∂q|∞ at the answer [N]
   int iterations = 0;         // Newton iterations, all load steps together
   int load_steps = 0;         // load increments taken (the load is applied in steps where Newton needs them)
+  double reach = 0;           // the tip's distance from its clamp in units of L (tip_reach)
+  double load_scale = 0;      // the linear theory's load for a tip deflection of L (3EI/L² at rest) [N]
 };
 
 /// Solves for the equilibrium under tip load `tip_load_n` [N] by Newton's method on q with a
-/// finite-difference Jacobian and a backtracking line search, from the straight filament, applying
-/// the load in increments that are halved where an increment fails. Converged when a Newton step
-/// moves q by less than 1e-13 L. Throws std::runtime_error naming the load reached when no
+/// forward-difference Jacobian and a backtracking line search, following the load from the straight
+/// filament in increments (at most the linear load scale at first, then at most the load reached;
+/// halved where an increment fails). Converged when a Newton step moves q by less than 1e-13 L (or
+/// by less than 1e-9 L and no longer shrinking: the round-off floor). Throws std::runtime_error naming the load reached when no
 /// equilibrium is found, and when `stop` is requested.
 StaticEquilibrium static_equilibrium(const BeamModel& beam, double tip_load_n, const StopToken* stop = nullptr);
+
+/// What a user must be told about the equilibrium under `tip_load_n`: a load that bends the filament
+/// more sharply near its clamp than the modes resolve (PL²/EI above n²); the tip farther than L from
+/// its clamp (the foreshortening model outside its geometry), or, for a model that is not
+/// geometrically exact, |y_t|/L above `deflection_warning_ratio` (simulation.deflection_warning_ratio).
+/// One line each.
+std::vector<std::string> static_warnings(const BeamModel& beam, const StaticEquilibrium& s, double tip_load_n,
+                                         double deflection_warning_ratio);
 
 }  // namespace rotbeam

@@ -183,7 +183,7 @@ void ElasticaBeam::shape(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen
                          Eigen::Ref<Eigen::MatrixXd> positions) const {
   if (positions.rows() != xi.size() || positions.cols() != 2)
     throw std::invalid_argument("shape: positions must be " + std::to_string(xi.size()) + " x 2");
-  const ModalBasis basis(n);
+  const ModalBasis& basis = *this->basis;
   const QuadratureRule& gauss = gauss_legendre_reference(K);
   const double max_panel = 1.0 / panels;
   std::vector<double> ds(static_cast<std::size_t>(n));
@@ -217,11 +217,10 @@ EnergyTerms ElasticaBeam::energy(const Eigen::Ref<const Eigen::VectorXd>& q, con
                                  BeamWorkspace& base) const {
   ElasticaWorkspace& ws = own(base);
   geometry(*this, q, ws);
-  mass_matrix(*this, ws);
   rates(*this, qd, ws);
   const double c = mass_per_length * length;  // ρA ∫ … ds = ρA L Σ w …
   EnergyTerms e;
-  e.t2 = 0.5 * detail::quadratic_form(ws.mass, qd);
+  e.t2 = 0.5 * c * node_weight.dot(ws.xd.cwiseAbs2() + ws.yd.cwiseAbs2());  // ½ρA∫|ṙ|² = ½q̇ᵀMq̇
   e.spin_inertia = c * node_weight.dot(ws.x.cwiseAbs2() + ws.y.cwiseAbs2());
   e.relative_momentum = c * node_weight.dot(ws.x.cwiseProduct(ws.yd) - ws.y.cwiseProduct(ws.xd));
   const double s0 = centrifugal ? 1.0 : 0.0, s1 = coriolis ? 1.0 : 0.0;
@@ -323,7 +322,8 @@ ElasticaBeam make_elastica(const BeamParameters& p, double theta0_rad, int panel
   b.node_xi.resize(nodes);
   b.node_weight.resize(nodes);
   b.slope.resize(nodes, b.n);
-  const ModalBasis basis(b.n);
+  b.basis = std::make_shared<const ModalBasis>(b.n);
+  const ModalBasis& basis = *b.basis;
   std::vector<double> ds(static_cast<std::size_t>(b.n));
   for (int pnl = 0; pnl < b.panels; ++pnl)
     for (int m = 0; m < K; ++m) {

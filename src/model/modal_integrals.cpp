@@ -3,6 +3,8 @@
 #include "rotbeam/quadrature.hpp"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <map>
 #include <mutex>
 
@@ -19,6 +21,10 @@ int default_quadrature_panels(int n) {
 }
 
 ModalIntegrals compute_modal_integrals(int n, int panels, int points) {
+  // The n⁴-sized tables of the thesis's model: its own limit (a ModalBasis takes the elastica's).
+  if (n < 1 || n > kMaxModes)
+    throw std::invalid_argument("modal integrals: modes must be in 1.." + std::to_string(kMaxModes) + ", got " +
+                                std::to_string(n));
   ModalIntegrals mi(n);
   const ModalBasis& basis = mi.basis;
   mi.n = n;

@@ -48,6 +48,32 @@ def test_a_small_load_deflects_both_theories_as_the_linear_cantilever():
         assert got["tip_y_m"] == pytest.approx(load * L ** 3 / (3 * EI), rel=2e-5), theory
 
 
+def test_static_warns_where_the_thesis_model_leaves_its_geometry():
+    # PL²/EI = 5: the thesis model's tip lies 1.06 L from its clamp (docs/model.md); the elastica's
+    # answer carries no warning. At PL²/EI = 0.5 (|y_t|/L = 0.16) the thesis model is only past
+    # the deflection warning ratio (0.1).
+    load = 5 * EI / L ** 2
+    fore = rotbeam.static(load, overrides={"beam.modes": 12, **AT_REST})
+    assert len(fore["warnings"]) == 1 and "farther than a filament of length L can reach" in fore["warnings"][0]
+    assert rotbeam.static(load, overrides={"beam.theory": "elastica", "beam.modes": 12, **AT_REST})["warnings"] == []
+    mild = rotbeam.static(0.5 * EI / L ** 2, overrides=AT_REST)
+    assert len(mild["warnings"]) == 1 and "deflection_warning_ratio" in mild["warnings"][0]
+    shell = json.loads(cli("static", "--set", "model.centrifugal=false", "--tip-load-n", repr(load), "--json").stdout)
+    assert shell["warnings"] == rotbeam.static(load, overrides={"model.centrifugal": False})["warnings"] != []
+
+
+def test_static_follows_the_branch_to_huge_loads_and_says_when_the_modes_cannot_follow():
+    # The elastica's tip turns toward the load as it grows (PL²/EI = 10 … 1e12), never past L; the
+    # load is followed from the filament's own scale (a single jump to 1e12 N once landed on another
+    # equilibrium). Beyond PL²/EI = n² the bend at the clamp is finer than the modes resolve: said.
+    tips = []
+    for k in (10, 100, 1e3, 1e6, 1e12):
+        got = rotbeam.static(k * EI / L ** 2, overrides={"beam.theory": "elastica", "beam.modes": 20, **AT_REST})
+        tips.append(got["tip_y_m"] / L)
+        assert (len(got["warnings"]) == 1 and "give more modes" in got["warnings"][0]) == (k > 400), k
+    assert all(0.8 < a <= b + 1e-6 and b <= 1.0 for a, b in zip(tips, tips[1:])), tips
+
+
 def test_static_refuses_what_it_cannot_compute():
     with pytest.raises(rotbeam.ConfigError, match="tip_load_n"):
         rotbeam.static(float("nan"))
@@ -71,6 +97,13 @@ def test_theories_runs_the_case_under_both_and_reports_the_difference():
                                                      - j["foreshortening"]["last_separation_deg"])
     text = cli("theories", "--set", "hub.speed_rpm=1000", "--set", "surface.depth_fraction=0.01").stdout
     assert "foreshortening" in text and "elastica" in text and "max|y_t|/L" in text
+    # A run that stops on a failure: both rows printed, exit 1, in text and in JSON.
+    for extra in ([], ["--json"]):
+        done = cli("theories", "--set", "simulation.max_impacts=3", *extra, code=1)
+        assert "foreshortening" in done.stdout and "elastica" in done.stdout
+    # More modes than the thesis model takes: the refusal says theories runs it too.
+    done = cli("theories", "--set", "beam.theory=elastica", "--set", "beam.modes=41", code=2)
+    assert "beam.modes = 41" in done.stderr and 'runs the case under beam.theory = "foreshortening" too' in done.stderr
 
 
 def test_an_elastica_run_draws_its_own_shape(tmp_path):
