@@ -61,6 +61,23 @@ Eigen::VectorXd psi_from_lagrangian(const Scalar2& lag, const Eigen::VectorXd& q
   return psi;
 }
 
+// M = ∂²L/∂q̇² by central second differences (exact: L is quadratic in q̇).
+Eigen::MatrixXd mass_from_lagrangian(const Scalar2& lag, const Eigen::VectorXd& q, const Eigen::VectorXd& v, double dv) {
+  const int n = static_cast<int>(q.size());
+  Eigen::MatrixXd m(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      auto at = [&](double a, double b) {
+        Eigen::VectorXd vv = v;
+        vv[i] += a;
+        vv[j] += b;
+        return lag(q, vv);
+      };
+      m(i, j) = (at(dv, dv) - at(dv, -dv) - at(-dv, dv) + at(-dv, -dv)) / (4 * dv * dv);
+    }
+  return m;
+}
+
 struct Case {
   int n;
   double rpm;
@@ -85,17 +102,7 @@ TEST_P(LagrangianCheck, MassMatrixAndEveryForceTermMatchTheLagrangian) {
 
   // M = ∂²T2/∂q̇² (T1 is linear and T0, U independent of q̇).
   const double dv = 0.5;
-  Eigen::MatrixXd m_fd(c.n, c.n);
-  for (int i = 0; i < c.n; ++i)
-    for (int j = 0; j < c.n; ++j) {
-      auto t2 = [&](double a, double b) {
-        Eigen::VectorXd vv = v;
-        vv[i] += a;
-        vv[j] += b;
-        return ref.lagrangian(q, vv);
-      };
-      m_fd(i, j) = (t2(dv, dv) - t2(dv, -dv) - t2(-dv, dv) + t2(-dv, -dv)) / (4 * dv * dv);
-    }
+  const Eigen::MatrixXd m_fd = mass_from_lagrangian([&](auto& a, auto& b) { return ref.lagrangian(a, b); }, q, v, dv);
   // Tolerance: 1e-9 of m. The second difference of L (≈ T0 ~ 1e-3…5e-2 J) loses ~1e-16·L/dv²
   // ≈ 1e-16 kg, far below; the reference quadrature is good to ~1e-13 relative.
   EXPECT_LE((ws.mass - m_fd).cwiseAbs().maxCoeff(), 1e-9 * model.mass) << "M(q)";
@@ -174,17 +181,8 @@ TEST_P(ElasticaLagrangianCheck, MassMatrixAndEveryForceTermMatchTheLagrangian) {
   const Eigen::VectorXd psi_none = psi(none).first, psi_cent = psi(cent).first, psi_cor = psi(cor).first;
 
   const double dv = 0.5;
-  Eigen::MatrixXd m_fd(c.n, c.n);
-  for (int i = 0; i < c.n; ++i)
-    for (int j = 0; j < c.n; ++j) {
-      auto lag = [&](double a, double b) {
-        Eigen::VectorXd vv = v;
-        vv[i] += a;
-        vv[j] += b;
-        return ref_full.lagrangian(q, vv);
-      };
-      m_fd(i, j) = (lag(dv, dv) - lag(dv, -dv) - lag(-dv, dv) + lag(-dv, -dv)) / (4 * dv * dv);
-    }
+  const Eigen::MatrixXd m_fd =
+      mass_from_lagrangian([&](auto& a, auto& b) { return ref_full.lagrangian(a, b); }, q, v, dv);
   EXPECT_LE((mass - m_fd).cwiseAbs().maxCoeff(), 1e-9 * full.mass) << "M(q)";
 
   const double dq = 2e-5;

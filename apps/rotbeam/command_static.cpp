@@ -36,9 +36,7 @@ int run_static(const StaticOptions& o) {
     throw;
   }
   const double L = config.beam.length_m;
-  const double d = config.beam.diameter_m;
-  const double ei = config.beam.youngs_modulus_pa * M_PI * std::pow(d, 4) / 64.0;
-  const double load_parameter = o.tip_load_n * L * L / ei;
+  const double load_parameter = o.tip_load_n * L * L / bending_stiffness(config.beam);
   const std::vector<std::string> warnings = static_warnings(*beam, s, o.tip_load_n, config.simulation.deflection_warning_ratio);
   if (o.json) {
     nlohmann::json j = {{"theory", beam_theory_name(config.beam.theory)},

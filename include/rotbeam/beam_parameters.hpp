@@ -36,4 +36,12 @@ struct BeamParameters {
   bool coriolis = true;
 };
 
+/// ρA [kg/m] and EI [N m²] of the circular section.
+double mass_per_length(const BeamParameters& p);
+double bending_stiffness(const BeamParameters& p);
+
+/// Throws std::invalid_argument unless L, D, ρ and E are positive and finite, r_h ≥ 0, the speed
+/// and θ0 [rad] finite, and the modes in 1..max_modes (a beam model's own limit).
+void check_beam_parameters(const BeamParameters& p, double theta0_rad, int max_modes);
+
 }  // namespace rotbeam

@@ -5,10 +5,6 @@
 
 namespace rotbeam {
 
-const char* beam_theory_name(BeamTheory theory) {
-  return theory == BeamTheory::elastica ? "elastica" : "foreshortening";
-}
-
 int max_modes(BeamTheory theory) { return theory == BeamTheory::elastica ? kMaxElasticaModes : kMaxModes; }
 
 std::shared_ptr<const BeamModel> make_beam_model(const BeamParameters& p, double theta0_rad) {

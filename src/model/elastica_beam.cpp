@@ -266,21 +266,7 @@ double ElasticaBeam::tip_excursion_bound(const Eigen::Ref<const Eigen::VectorXd>
 }
 
 ElasticaBeam make_elastica(const BeamParameters& p, double theta0_rad, int panels) {
-  auto positive = [](double v, const char* what) {
-    if (!(v > 0.0) || !std::isfinite(v))
-      throw std::invalid_argument(std::string(what) + " must be positive and finite, got " + std::to_string(v));
-  };
-  positive(p.length_m, "beam length");
-  positive(p.diameter_m, "beam diameter");
-  positive(p.density_kg_m3, "density");
-  positive(p.youngs_modulus_pa, "Young's modulus");
-  if (!(p.hub_radius_m >= 0.0) || !std::isfinite(p.hub_radius_m))
-    throw std::invalid_argument("hub radius must be >= 0, got " + std::to_string(p.hub_radius_m));
-  if (!std::isfinite(p.speed_rpm) || !std::isfinite(theta0_rad))
-    throw std::invalid_argument("speed and start angle must be finite");
-  if (p.modes < 1 || p.modes > kMaxElasticaModes)
-    throw std::invalid_argument("modes must be in 1.." + std::to_string(kMaxElasticaModes) + ", got " +
-                                std::to_string(p.modes));
+  check_beam_parameters(p, theta0_rad, kMaxElasticaModes);
   if (panels < 0) throw std::invalid_argument("panels must be >= 0, got " + std::to_string(panels));
   ElasticaBeam b;
   b.n = p.modes;
@@ -290,10 +276,8 @@ ElasticaBeam make_elastica(const BeamParameters& p, double theta0_rad, int panel
   b.theta0 = theta0_rad;
   b.centrifugal = p.centrifugal;
   b.coriolis = p.coriolis;
-  const double area = M_PI * p.diameter_m * p.diameter_m / 4.0;
-  const double inertia = M_PI * std::pow(p.diameter_m, 4) / 64.0;
-  b.mass_per_length = p.density_kg_m3 * area;
-  b.bending_stiffness = p.youngs_modulus_pa * inertia;
+  b.mass_per_length = mass_per_length(p);
+  b.bending_stiffness = bending_stiffness(p);
   b.mass = b.mass_per_length * p.length_m;
   b.panels = panels > 0 ? panels : b.n + 2;
 

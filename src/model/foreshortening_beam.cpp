@@ -136,20 +136,7 @@ double ForeshorteningBeam::tip_excursion_bound(const Eigen::Ref<const Eigen::Vec
 }
 
 ForeshorteningBeam make_beam(const BeamParameters& p, double theta0_rad) {
-  auto positive = [](double v, const char* what) {
-    if (!(v > 0.0) || !std::isfinite(v))
-      throw std::invalid_argument(std::string(what) + " must be positive and finite, got " + std::to_string(v));
-  };
-  positive(p.length_m, "beam length");
-  positive(p.diameter_m, "beam diameter");
-  positive(p.density_kg_m3, "density");
-  positive(p.youngs_modulus_pa, "Young's modulus");
-  if (!(p.hub_radius_m >= 0.0) || !std::isfinite(p.hub_radius_m))
-    throw std::invalid_argument("hub radius must be >= 0, got " + std::to_string(p.hub_radius_m));
-  if (!std::isfinite(p.speed_rpm) || !std::isfinite(theta0_rad))
-    throw std::invalid_argument("speed and start angle must be finite");
-  if (p.modes < 1 || p.modes > kMaxModes)
-    throw std::invalid_argument("modes must be in 1.." + std::to_string(kMaxModes) + ", got " + std::to_string(p.modes));
+  check_beam_parameters(p, theta0_rad, kMaxModes);
   ForeshorteningBeam m;
   m.n = p.modes;
   m.length = p.length_m;
@@ -158,10 +145,8 @@ ForeshorteningBeam make_beam(const BeamParameters& p, double theta0_rad) {
   m.theta0 = theta0_rad;
   m.centrifugal = p.centrifugal;
   m.coriolis = p.coriolis;
-  const double area = M_PI * p.diameter_m * p.diameter_m / 4.0;
-  const double inertia = M_PI * std::pow(p.diameter_m, 4) / 64.0;
-  m.mass_per_length = p.density_kg_m3 * area;
-  m.bending_stiffness = p.youngs_modulus_pa * inertia;
+  m.mass_per_length = mass_per_length(p);
+  m.bending_stiffness = bending_stiffness(p);
   m.mass = m.mass_per_length * p.length_m;
   m.integrals = modal_integrals(p.modes);
   m.linear_stiffness_ = linear_stiffness(m);
