@@ -43,8 +43,8 @@ void print_summary(const Config& config, const PassResult& r, const std::string&
   std::cout << "  impacts               " << s.impacts << " (" << s.plastic_impacts << " plastic)\n";
   std::cout << "  contact episodes      " << s.contact_episodes << ", " << fixed(s.contact_time_s * 1e3, 4)
             << " ms in contact\n";
-  if (s.impacts > 0)
-    std::cout << "  contact span          θ from " << fixed(s.first_impact_deg, 3) << "° (first impact) to "
+  if (s.impacts > 0 || s.contact_episodes > 0)
+    std::cout << "  contact span          θ from " << fixed(s.first_impact_deg, 3) << "° (first touch) to "
               << fixed(s.last_separation_deg, 3) << "° (last separation)\n";
   else
     std::cout << "  contact span          none: the tip never reached the surface\n";

@@ -62,6 +62,7 @@ struct FilamentSteadyState {
   // The ledger per revolution (means over the orbit) and its largest residual [J].
   double hub_work_j = 0, friction_work_j = 0, surface_work_j = 0, damping_work_j = 0, impact_loss_j = 0,
          energy_change_j = 0;
+  double contact_dissipation_j = 0;  // a compliant contact's damping (contact.model = "hertz"), in the ledger
   double ledger_residual_j = 0;
   double wall_time_s = 0;
   std::optional<NumericalFailure> failure;
@@ -83,6 +84,7 @@ struct BrushSummary {
   // loss = energy change (0 on a periodic orbit); the residual is the largest filament's, summed.
   double hub_work_j = 0, friction_work_j = 0, surface_work_j = 0, damping_work_j = 0, impact_loss_j = 0,
          energy_change_j = 0;
+  double contact_dissipation_j = 0;  // a compliant contact's damping (contact.model = "hertz"), in the ledger
   double ledger_residual_j = 0;
   // Dimensionless groups: depth p = d/L; speed Ω/ω₁ (ω₁ the first bending frequency of the nominal
   // cantilever at rest, 1.87510² √(EI/(ρAL⁴))); force per filament F̄/(3EI·pL/L³) (the mean

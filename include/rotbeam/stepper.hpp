@@ -7,6 +7,7 @@
 //   gap_closes           free flight   C(t, q)            crosses 0 upward    (a touch: impact or contact)
 //   multiplier_vanishes  contact       λ(t, q, q̇)         crosses 0 upward    (separation)
 //   slip_stops           contact       s_t·V_t(t, q, q̇)   crosses 0 downward  (slip reversal, stick, lift-off)
+//   gap_opens            compliant     C(t, q)            crosses 0 downward  (the end of a Hertz contact)
 #pragma once
 
 #include "rotbeam/contact_law.hpp"
@@ -50,9 +51,10 @@ struct StepIntegrals {
   double peak_normal_force = 0;  // the largest F_n over the step, its interior included [N]
   double damping_work = 0;       // −∫ q̇ᵀC q̇ dt ≤ 0, the work of the beam's damping (SPEC §11) [J]
   double surface_work = 0;       // ∫ F_t (V_s·t) dt [J]: a moving surface's work through friction
+  double contact_dissipation = 0;  // ∫ −(F_n − kδ^{3/2})δ̇ dt ≤ 0, the compliant contact's damping (SPEC §11) [J]
 };
 
-enum class Root { none, gap_closes, multiplier_vanishes, slip_stops };
+enum class Root { none, gap_closes, multiplier_vanishes, slip_stops, gap_opens };
 
 enum class StepStatus {
   advanced,  // an ordinary step: the state is at its end
@@ -112,6 +114,10 @@ public:
   virtual void begin_free(const FilamentState& state, FreeStart start) = 0;
   /// Sustained contact begins at `state` with the acceleration-level multiplier λ0.
   virtual void begin_contact(const FilamentState& state, double lambda0) = 0;
+  /// A compliant (Hertz) contact begins at `state` (C = 0, approaching) with the Hunt–Crossley
+  /// damping c [s/m] of this contact (contact_law.hpp); its steps end at Root::gap_opens. Only the
+  /// adaptive scheme integrates it (the configuration refuses the thesis's with contact.model = "hertz").
+  virtual void begin_compliant_contact(const FilamentState& state, double damping);
   /// One step of the current phase from `state`, never beyond t_stop.
   virtual StepOutcome step(FilamentState& state, double t_stop) = 0;
   /// The free-flight state at t inside the step just taken (CVODE's CVodeGetDky at order 0), into

@@ -13,6 +13,10 @@
 //   contact      q̈ = M⁻¹(−Ψ + λ∇C + |λ|Q*) with λ from a λ + b|λ| = c at every evaluation;
 //                roots λ = 0 (upward) and s_t V_t = 0 (downward); before each step q and q̇ are
 //                projected (mass-weighted) onto C = 0 and Ċ = 0, and again at its end
+//   compliant    (contact.model = "hertz") q̈ = M⁻¹(−Ψ + Q) with Q from contact_load at λ = −F_n,
+//                F_n = hertz_normal_force(δ = C, δ̇ = Ċ) and the regularised slip: a smooth
+//                right-hand side inside the contact, whose duration the error control resolves;
+//                root C = 0 (downward, the contact's end); W_c = ∫ dissipation dt is integrated too
 // Each step's dense output is sampled at interior points before root finding (TOMS 748), so a
 // crossing and re-crossing within one step is still found; the largest normal force inside a
 // contact step is found on the dense output too (Brent), and so is a whole rebound flight that fits
@@ -42,9 +46,10 @@ constexpr int kSamplesPerStep = 4;  // interior samples of the dense output per 
 // Free flight samples the gap at least this many times per period of the highest linear mode, so
 // that a step spanning several of its periods (the integrating factor allows it) misses no touch.
 constexpr double kSamplesPerPeriod = 8.0;
-constexpr int kIntegrals = 6;       // W, W_f, I_n, I_m, W_d, W_s after q and q̇ in the state
+constexpr int kIntegrals = 7;       // W, W_f, I_n, I_m, W_d, W_s, W_c after q and q̇ in the state
 constexpr int kDampingWork = 4;     // W_d's place among them
 constexpr int kSurfaceWork = 5;     // W_s's (a moving surface's work through friction)
+constexpr int kContactDissipation = 6;  // W_c's (a compliant contact's damping)
 constexpr int kBrentBits = 30;      // a maximum or minimum on the dense output to ~1e-9 of its bracket
 // An accepted step shorter than this fraction of the pass means the tolerance cannot be met in
 // double precision (at rtol ≥ 1e-13 the steps stay above ~1e-9 s for a pass of ~1e-2 s).
@@ -115,8 +120,20 @@ public:
 
   void begin_contact(const FilamentState&, double) override { phase_ = Phase::contact; }
 
+  void begin_compliant_contact(const FilamentState& s, double damping) override {
+    phase_ = Phase::contact;
+    damping_ = damping;
+    dt_ = kInitialStep;
+    t_ = s.t;
+    q_ = s.q;
+    qd_ = s.qd;
+    reinitialize();
+    marks_.fill(0.0);
+  }
+
   StepOutcome step(FilamentState& s, double t_stop) override {
-    return s.phase == Phase::free ? free_step(s, t_stop) : contact_step(s, t_stop);
+    if (s.phase == Phase::free) return free_step(s, t_stop);
+    return compliant_ ? compliant_step(s, t_stop) : contact_step(s, t_stop);
   }
 
   const StepperStatistics& statistics() const override { return stats_; }
@@ -164,8 +181,8 @@ private:
     return std::max(kSamplesPerStep, static_cast<int>(std::ceil(kSamplesPerPeriod * h * highest_hz_)));
   }
   StepIntegrals integrals_of(const State& x) const {
-    return {x[2 * n_], x[2 * n_ + 1], x[2 * n_ + 2], x[2 * n_ + 3], 0.0, x[2 * n_ + kDampingWork],
-            x[2 * n_ + kSurfaceWork]};
+    return {x[2 * n_],           x[2 * n_ + 1], x[2 * n_ + 2], x[2 * n_ + 3], 0.0, x[2 * n_ + kDampingWork],
+            x[2 * n_ + kSurfaceWork], x[2 * n_ + kContactDissipation]};
   }
   void store(FilamentState& s) const {
     s.t = t_;
@@ -187,6 +204,23 @@ private:
       if (damped_) dxdt[2 * n_ + kDampingWork] = -sys_.beam.dissipation(qd);
       return;
     }
+    if (compliant_) {
+      const HertzContact& hertz = sys_.law.hertz;
+      tip_kinematics(sys_.beam, sys_.surface, t, q, qd, tip_);
+      const double fn = hertz_normal_force(hertz, damping_, tip_.gap, tip_.gap_rate);
+      const double slip = regularized_slip(tip_.slip_speed, hertz.friction_regularization_m_s);
+      const ContactLoad load = contact_load(sys_.law.friction, tip_, qd, -fn, slip, force_);
+      acceleration(sys_.beam, q, qd, &force_, *ws_, a);
+      motion_derivative(dxdt);
+      dxdt[2 * n_] = load.power;
+      dxdt[2 * n_ + 1] = load.slip_power;
+      dxdt[2 * n_ + 2] = load.normal_force;
+      dxdt[2 * n_ + 3] = load.moment;
+      dxdt[2 * n_ + kSurfaceWork] = load.surface_power;
+      dxdt[2 * n_ + kDampingWork] = damped_ ? -sys_.beam.dissipation(qd) : 0.0;
+      dxdt[2 * n_ + kContactDissipation] = hertz_dissipation_rate(hertz, fn, tip_.gap, tip_.gap_rate);
+      return;
+    }
     const AccelerationMultiplier am =
         acceleration_multiplier(sys_.beam, sys_.surface, sys_.law.friction, t, q, qd, slip_, *ws_, tip_);
     if (am.solution.status != MultiplierSolution::Status::unique && !painleve_) {
@@ -206,6 +240,7 @@ private:
     dxdt[2 * n_ + 3] = load.moment;
     dxdt[2 * n_ + kSurfaceWork] = load.surface_power;
     dxdt[2 * n_ + kDampingWork] = damped_ ? -sys_.beam.dissipation(qd) : 0.0;
+    dxdt[2 * n_ + kContactDissipation] = 0.0;
   }
 
   // The derivative of the motion's part of x from q̇ (pqd_) and q̈ (pa_) at the state of the last
@@ -474,6 +509,113 @@ private:
     return out;
   }
 
+  // The compliant contact at (t, q, q̇) of a dense-output state: tip kinematics into etip_, F_n returned.
+  double compliant_force(double t, const State& x) {
+    physical(t, x, pq_, pqd_);
+    tip_kinematics(sys_.beam, sys_.surface, t, pq_, pqd_, etip_);
+    return hertz_normal_force(sys_.law.hertz, damping_, etip_.gap, etip_.gap_rate);
+  }
+
+  // One step of a compliant (Hertz) contact: the force is a smooth function of the state, so the
+  // step is an ordinary error-controlled step (no projection); the contact ends where C crosses 0
+  // downward (looked for at interior samples of the dense output, then TOMS 748), and the step's
+  // largest F_n is found on the samples and refined by Brent between the best one's neighbours.
+  StepOutcome compliant_step(FilamentState& s, double t_stop) {
+    StepOutcome out;
+    const bool rebase = factor_ && (t_ - base_) * factor_rebase_rate_ > 1.0;
+    if (stepper_.current_time() != s.t || t_ != s.t || rebase) {  // cut at a section, or the factor's base moves
+      t_ = s.t;
+      q_ = s.q;
+      qd_ = s.qd;
+      reinitialize();
+      marks_.fill(0.0);
+    }
+    const double c_start = gap(sys_.beam, sys_.surface, t_, q_);
+    double ta = 0, tb = 0;
+    if (!advance(t_stop, ta, tb, out)) return out;
+    const double te = std::min(tb, t_stop);
+    auto opening = [&](double t) {  // −C: negative inside the contact
+      stepper_.calc_state(t, xs_);
+      return -state_gap(t, xs_);
+    };
+    std::array<double, kSamplesPerStep + 1> ts{}, fn{};
+    ts[0] = ta;
+    stepper_.calc_state(ta, xs_);
+    fn[0] = compliant_force(ta, xs_);
+    double g_prev = std::min(-c_start, -1e-300);
+    double t_end = te;
+    Root root = Root::none;
+    int sampled = 0;
+    for (int k = 1; k <= kSamplesPerStep; ++k) {
+      ts[k] = ta + (te - ta) * k / kSamplesPerStep;
+      stepper_.calc_state(ts[k], xs_);
+      fn[k] = compliant_force(ts[k], xs_);
+      const double gk = -etip_.gap;
+      sampled = k;
+      if (g_prev < 0.0 && gk >= 0.0) {
+        boost::uintmax_t iters = 200;
+        const double tol_s = opt_.event_tolerance_s;
+        const auto tol = [tol_s](double a, double b) { return std::abs(b - a) <= tol_s; };
+        t_end = boost::math::tools::toms748_solve(opening, ts[k - 1], ts[k], g_prev, gk, tol, iters).second;
+        root = Root::gap_opens;
+        break;
+      }
+      g_prev = gk;
+    }
+    auto force_at = [&](double t) {
+      stepper_.calc_state(t, xs_);
+      return compliant_force(t, xs_);
+    };
+    const double peak = sampled_peak(ts, fn, sampled, t_end, force_at);
+    if (t_end < tb) stepper_.calc_state(t_end, xs_);
+    const State& xe = t_end < tb ? xs_ : stepper_.current_state();
+    unpack(t_end, xe);
+    if (!q_.allFinite() || !qd_.allFinite()) return failed(FailureKind::non_finite, "the compliant contact state became non-finite");
+    const StepIntegrals total = integrals_of(xe);
+    out.integrals = total;
+    out.integrals.work -= marks_[0];
+    out.integrals.friction_work -= marks_[1];
+    out.integrals.normal_impulse -= marks_[2];
+    out.integrals.contact_moment -= marks_[3];
+    out.integrals.damping_work -= marks_[4];
+    out.integrals.surface_work -= marks_[5];
+    out.integrals.contact_dissipation -= marks_[6];
+    marks_ = {total.work, total.friction_work, total.normal_impulse, total.contact_moment, total.damping_work,
+              total.surface_work, total.contact_dissipation};
+    t_ = t_end;
+    store(s);
+    tip_kinematics(sys_.beam, sys_.surface, t_, q_, qd_, tip_);
+    const HertzContact& hertz = sys_.law.hertz;
+    const double slip = regularized_slip(tip_.slip_speed, hertz.friction_regularization_m_s);
+    s.slip = slip;
+    const double f_end = root == Root::none ? hertz_normal_force(hertz, damping_, tip_.gap, tip_.gap_rate) : 0.0;
+    out.load = contact_load(sys_.law.friction, tip_, qd_, -f_end, slip, force_);
+    out.load.slip = slip;
+    out.integrals.peak_normal_force = std::max(peak, f_end);
+    out.root = root;
+    out.status = root == Root::none ? StepStatus::advanced : StepStatus::root;
+    return out;
+  }
+
+  // The largest of the sampled forces fn at ts[0..sampled] before t_end, refined by Brent's
+  // maximisation of force_at between the best sample's neighbours when it is an interior one.
+  template <class ForceAt>
+  double sampled_peak(const std::array<double, kSamplesPerStep + 1>& ts, const std::array<double, kSamplesPerStep + 1>& fn,
+                      int sampled, double t_end, ForceAt& force_at) {
+    int best = 0, last = 0;
+    for (int k = 0; k <= sampled && ts[k] < t_end; ++k) {
+      last = k;
+      if (fn[k] > fn[best]) best = k;
+    }
+    const double peak = fn[best];
+    if (best == 0 || sampled == 0) return peak;
+    const double lo = ts[best - 1], hi = best < last ? ts[best + 1] : t_end;
+    auto minus = [&](double t) { return -force_at(t); };
+    boost::uintmax_t iters = 100;
+    const auto found = boost::math::tools::brent_find_minima(minus, lo, hi, kBrentBits, iters);
+    return std::max(peak, -found.second);
+  }
+
   // The largest normal force of a contact step: the sampled values on [ta, t_event) and, where the
   // largest sample is inside that range, Brent's maximisation on the dense output between its
   // neighbours (a maximum inside a step is not lost to the step ends).
@@ -520,6 +662,11 @@ private:
   bool armed_ = false;
   bool painleve_ = false;
   double painleve_t_ = 0, painleve_abc_[3] = {0, 0, 0};
+  // The compliant law (contact.model = "hertz"): its damping c [s/m] for the contact under way, and
+  // the integrals at the last reported point since the last (re)initialisation.
+  const bool compliant_ = sys_.law.model == ContactModel::hertz;
+  double damping_ = 0;
+  std::array<double, kIntegrals> marks_{};
 };
 
 }  // namespace

@@ -112,6 +112,7 @@ nlohmann::json brush_summary_json(const BrushResult& result, const Config& confi
                                 {"surface_work_j", s.surface_work_j},
                                 {"damping_work_j", s.damping_work_j},
                                 {"impact_loss_j", s.impact_loss_j},
+                                {"contact_dissipation_j", s.contact_dissipation_j},
                                 {"energy_change_j", s.energy_change_j},
                                 {"residual_j", s.ledger_residual_j}};
   j["dimensionless"] = {

@@ -260,6 +260,20 @@ const std::vector<std::pair<std::string, Setter>>& schema() {
              one_of(k, n, {"none", "coulomb"}) == "coulomb" ? ImpactFriction::coulomb : ImpactFriction::none;
        }},
       {"impact.plastic_below_m_s", [](Parsed& p, auto& k, auto& n) { p.config.contact.impact.plastic_below_m_s = number_in(k, n, 0.0, 1e6, false, false); }},
+      // The compliant contact law (docs/contact.md); its keys are checked together in check_contact.
+      {"contact.model",
+       [](Parsed& p, auto& k, auto& n) {
+         p.config.contact.model = one_of(k, n, {"rigid", "hertz"}) == "hertz" ? ContactModel::hertz : ContactModel::rigid;
+       }},
+      {"contact.tip_radius_m", [](Parsed& p, auto& k, auto& n) { p.config.contact.hertz.tip_radius_m = number_in(k, n, 0.0, 1.0, true, false); }},
+      {"contact.friction_regularization_m_s",
+       [](Parsed& p, auto& k, auto& n) { p.config.contact.hertz.friction_regularization_m_s = number_in(k, n, 0.0, 10.0, true, false); }},
+      {"contact.stiffness_factor",
+       [](Parsed& p, auto& k, auto& n) { p.config.contact.hertz.stiffness_factor = number_in(k, n, 1e-6, 1e12, false, false); }},
+      {"surface.youngs_modulus_pa",
+       [](Parsed& p, auto& k, auto& n) { p.config.contact.hertz.surface_youngs_modulus_pa = number_in(k, n, 1e3, 1e15, false, false); }},
+      {"surface.poisson", [](Parsed& p, auto& k, auto& n) { p.config.contact.hertz.surface_poisson = number_in(k, n, -1.0, 0.5, true, true); }},
+      {"beam.poisson", [](Parsed& p, auto& k, auto& n) { p.config.contact.hertz.wire_poisson = number_in(k, n, -1.0, 0.5, true, true); }},
       {"initial.start",
        [](Parsed& p, auto& k, auto& n) {
          p.config.initial.start = one_of(k, n, {"rigid", "flexible"});
@@ -535,6 +549,33 @@ Config resolve(toml::table& root, const std::vector<std::pair<std::string, std::
 }
 
 // The [surface] keys each shape takes (surface.hpp): a key of another shape is an error, not ignored.
+// The compliant law's keys (docs/contact.md): refused under the rigid law, which has no use for
+// them; under hertz the adaptive scheme, the physical forces and a positive restitution are needed.
+void check_contact(const toml::table& root, const Config& c) {
+  const auto node_of = [&](const char* key) { return root.at_path(key).node(); };
+  if (c.contact.model == ContactModel::rigid) {
+    for (const char* key : {"contact.tip_radius_m", "contact.friction_regularization_m_s", "contact.stiffness_factor",
+                            "surface.youngs_modulus_pa",
+                            "surface.poisson", "beam.poisson"})
+      if (const toml::node* node = node_of(key)) fail(key, *node, "applies to contact.model = \"hertz\"; this case's is \"rigid\"");
+    return;
+  }
+  const toml::node& model = *node_of("contact.model");
+  if (c.simulation.scheme == Scheme::thesis)
+    fail("contact.model", model, "needs simulation.scheme = \"adaptive\" (the thesis's scheme has no compliant contact)");
+  if (c.contact.friction.thesis_forces)
+    fail("contact.model", model, "uses the physical forces: it cannot be combined with compat.thesis_forces = true");
+  const ImpactLaw& impact = c.contact.impact;
+  if (impact.model == RestitutionModel::constant && !(impact.constant > 0.0)) {
+    const toml::node* node = node_of("impact.restitution");
+    fail("impact.restitution", node ? *node : model,
+         "must be above 0 with contact.model = \"hertz\" (Hunt–Crossley damping has no finite value for e = 0)");
+  }
+  if (!(impact.cap > 0.0))
+    fail("impact.restitution_cap", *node_of("impact.restitution_cap"),
+         "must be above 0 with contact.model = \"hertz\" (Hunt–Crossley damping has no finite value for e = 0)");
+}
+
 void check_surface(const toml::table& root, const Config& c) {
   const SurfaceParameters& sp = c.surface;
   const std::string shape = surface_shape_name(sp.shape);
@@ -642,6 +683,7 @@ Config validate(toml::table& root) {
     throw ConfigError("beam.diameter_m = " + format_number(c.beam.diameter_m) + ": " + what);
   }
   check_surface(root, c);
+  check_contact(root, c);
   PassOptions& sim = c.simulation;
   if (p.revolutions_node && p.end_angle_node)
     fail("simulation.end_angle_deg", *p.end_angle_node,
@@ -862,6 +904,16 @@ nlohmann::json Config::to_json() const {
     j["impact"]["restitution"] = "yigit";
   else
     j["impact"]["restitution"] = impact.constant;
+  if (contact.model == ContactModel::hertz) {  // a rigid case's configuration is as it always was
+    const HertzContact& h = contact.hertz;
+    j["contact"] = {{"model", "hertz"},
+                    {"friction_regularization_m_s", h.friction_regularization_m_s},
+                    {"stiffness_factor", h.stiffness_factor}};
+    if (h.tip_radius_m > 0.0) j["contact"]["tip_radius_m"] = h.tip_radius_m;
+    j["surface"]["youngs_modulus_pa"] = h.surface_youngs_modulus_pa;
+    j["surface"]["poisson"] = h.surface_poisson;
+    j["beam"]["poisson"] = h.wire_poisson;
+  }
   j["initial"] = {{"start", initial.start},
                   {"modal_velocity", initial.modal_velocity},
                   {"modal_displacement", initial.modal_displacement}};

@@ -124,7 +124,7 @@ std::string revolutions_header(int n) {
       "revolution,complete,t_start_s,t_end_s,impacts,contact_episodes,first_impact_deg,last_separation_deg,"
       "normal_impulse_n_s,friction_work_j,surface_work_j,damping_work_j,impact_loss_j,hub_work_j,energy_change_j,"
       "mean_hub_torque_n_m,mean_hub_power_w,max_tip_deflection_ratio,section_distance,contact_time_s,"
-      "peak_normal_force_n,ledger_residual_j";
+      "peak_normal_force_n,ledger_residual_j,contact_dissipation_j";
   for (int i = 1; i <= n; ++i) h += ",q" + std::to_string(i) + "_m";
   for (int i = 1; i <= n; ++i) h += ",qd" + std::to_string(i) + "_m_s";
   return h;
@@ -141,7 +141,7 @@ void append_revolution_line(std::string& out, const RevolutionRecord& r) {
   for (double v : {r.first_impact_deg, r.last_separation_deg, r.normal_impulse_n_s, r.friction_work_j, r.surface_work_j, r.damping_work_j,
                    r.impact_loss_j, r.hub_work_j, r.energy_change_j, r.mean_hub_torque_n_m, r.mean_hub_power_w,
                    r.max_tip_deflection_ratio, r.section_distance, r.contact_time_s, r.peak_normal_force_n,
-                   r.ledger_residual_j}) {
+                   r.ledger_residual_j, r.contact_dissipation_j}) {
     out += ',';
     put(out, v);
   }
@@ -182,6 +182,7 @@ nlohmann::json summary_json(const PassResult& result, const Config& config, cons
   j["hub_work_j"] = s.hub_work_j;
   j["hub_impulsive_work_j"] = s.hub_impulsive_work_j;
   j["impact_loss_j"] = s.impact_loss_j;
+  j["contact_dissipation_j"] = s.contact_dissipation_j;
   j["energy_change_j"] = s.energy_change_j;
   j["max_tip_deflection_ratio"] = s.max_tip_deflection_ratio;
   j["validity"] = validity_name(s.validity);
@@ -208,6 +209,7 @@ nlohmann::json summary_json(const PassResult& result, const Config& config, cons
                             {"surface_work_j", r.surface_work_j},
                             {"damping_work_j", r.damping_work_j},
                             {"impact_loss_j", r.impact_loss_j},
+                            {"contact_dissipation_j", r.contact_dissipation_j},
                             {"hub_work_j", r.hub_work_j},
                             {"max_tip_deflection_ratio", r.max_tip_deflection_ratio},
                             {"ledger_residual_j", r.ledger_residual_j}};

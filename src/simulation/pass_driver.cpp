@@ -80,7 +80,10 @@ void PassDriver::run(const InitialConditions& ic) {
       flexible_from_t_ = t_star;  // the rigid turn costs nothing: progress counts from here
       rec_.rigid_turn(t_star);
       rec_.accept(state_.t, state_.q, state_.qd, Phase::free, {}, {}, true);
-      impact();
+      if (compliant_)
+        compliant_contact();
+      else
+        impact();
       if (done_) return;
       loop();
       return;
@@ -158,6 +161,7 @@ bool PassDriver::clear_for_the_rest() {
 }
 
 void PassDriver::touch() {
+  if (compliant_) return compliant_contact();
   tip_kinematics(system_.beam, system_.surface, state_.t, state_.q, state_.qd, tip_);
   if (tip_.gap_rate > 0.0)
     impact();
@@ -214,6 +218,21 @@ void PassDriver::begin_contact(const std::string& why) {
   stepper_.begin_contact(state_, am.solution.lambda);
 }
 
+void PassDriver::compliant_contact() {
+  tip_kinematics(system_.beam, system_.surface, state_.t, state_.q, state_.qd, tip_);
+  const double v0 = tip_.gap_rate;
+  const double full = std::hypot(tip_.VX - tip_.surface_vx, tip_.VY - tip_.surface_vy);
+  const double damping = hertz_damping(system_.law, v0, full);
+  state_.slip = regularized_slip(tip_.slip_speed, system_.law.hertz.friction_regularization_m_s);
+  ContactLoad zero;
+  zero.slip = state_.slip;
+  rec_.compliant_touch(state_.t, state_.q, state_.qd, zero,
+                       "compliant contact: approach speed " + short_number(v0) + " m/s, Hunt–Crossley c = " +
+                           short_number(damping) + " s/m");
+  state_.phase = Phase::contact;
+  stepper_.begin_compliant_contact(state_, damping);
+}
+
 void PassDriver::separate() {
   state_.phase = Phase::free;
   stepper_.begin_free(state_, FreeStart::separation);
@@ -243,11 +262,12 @@ void PassDriver::contact() {
     if (!traits_.locates_slip_stops && !check_slip()) return;
     const StepOutcome o = stepper_.step(state_, stop_time());
     if (o.status == StepStatus::failed) return fail(o.failure->kind, o.failure->t, o.failure->message, Phase::contact);
-    if (o.root == Root::multiplier_vanishes) {  // separation
-      ContactLoad zero;  // no force at λ = 0; the slip of the step, for the friction's impulse over it
+    if (o.root == Root::multiplier_vanishes || o.root == Root::gap_opens) {  // separation
+      ContactLoad zero;  // no force at λ = 0 (or δ = 0); the slip of the step, for the friction's impulse over it
       zero.slip = state_.slip;
       rec_.accept(state_.t, state_.q, state_.qd, Phase::contact, zero, o.integrals, true);
-      rec_.contact_end(state_.t, state_.q, state_.qd, "λ reached 0");
+      rec_.contact_end(state_.t, state_.q, state_.qd,
+                       o.root == Root::gap_opens ? "the gap opened (δ = 0)" : "λ reached 0");
       instant_transitions_ = (state_.t - t_enter < kInstant) ? instant_transitions_ + 1 : 0;
       return separate();
     }

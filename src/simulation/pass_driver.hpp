@@ -30,6 +30,9 @@ private:
   void impact();
   // Enters sustained contact at the current state (C = Ċ = 0) if the slip analysis allows it.
   void begin_contact(const std::string& why);
+  // A compliant (Hertz) contact begins at the current state (C = 0): its damping from the approach
+  // speed, a contact_start event, then the stepper's compliant phase (SPEC §11).
+  void compliant_contact();
   // Free flight from the current state after a separation or lift-off.
   void separate();
   void fail(FailureKind kind, double t, const std::string& message, Phase phase);
@@ -64,6 +67,7 @@ private:
   detail::ProgressClock progress_clock_;
   double flexible_from_t_ = 0.0;  // where the integration of the flexible motion began [s]
   double next_clear_check_t_ = 0.0;  // simulation.end_when_clear: the next check [s]
+  const bool compliant_ = system_.law.model == ContactModel::hertz;  // contact.model = "hertz"
 };
 
 }  // namespace rotbeam

@@ -247,7 +247,7 @@ void PassRecorder::start(double t, const Eigen::VectorXd& q, const Eigen::Vector
   t_start_ = t;
   const EnergyTerms e = system_.beam.energy(q, qd, *ws_);
   h_start_ = e.jacobi;
-  energy_start_ = e.kinetic + e.potential;
+  energy_start_ = e.kinetic + e.potential + contact_energy(t, q);
   momentum_start_ = e.angular_momentum;
   last_h_ = e.angular_momentum;
   energy_scale_ = std::abs(h_start_);
@@ -287,7 +287,8 @@ void PassRecorder::open_revolution(double t, const Eigen::VectorXd& q, const Eig
   ++revolution_;
   revolution_open_ = true;
   mark_.t = t;
-  mark_.energy = e.kinetic + e.potential;
+  mark_.energy = e.kinetic + e.potential + contact_energy(t, q);
+  mark_.contact_dissipation = s.contact_dissipation_j;
   mark_.momentum = e.angular_momentum;
   mark_.contact_moment = contact_moment_;
   mark_.impulse_moment = impulse_moment_;
@@ -332,7 +333,8 @@ bool PassRecorder::close_revolution(double t, const Eigen::VectorXd& q, const Ei
   r.impact_loss_j = s.impact_loss_j - mark_.impact_loss;
   r.hub_work_j = omega * (e.angular_momentum - mark_.momentum - (contact_moment_ - mark_.contact_moment) -
                           (impulse_moment_ - mark_.impulse_moment));
-  r.energy_change_j = e.kinetic + e.potential - mark_.energy;
+  r.contact_dissipation_j = s.contact_dissipation_j - mark_.contact_dissipation;
+  r.energy_change_j = e.kinetic + e.potential + contact_energy(t, q) - mark_.energy;
   const double dt = t - mark_.t;
   r.mean_hub_torque_n_m = dt > 0.0 ? r.hub_work_j / (omega * dt) : 0.0;
   r.mean_hub_power_w = dt > 0.0 ? r.hub_work_j / dt : 0.0;
@@ -340,7 +342,8 @@ bool PassRecorder::close_revolution(double t, const Eigen::VectorXd& q, const Ei
   r.contact_time_s = s.contact_time_s - mark_.contact_time;
   r.peak_normal_force_n = rev_peak_force_;
   r.ledger_residual_j =
-      r.hub_work_j + r.friction_work_j + r.surface_work_j + r.damping_work_j + r.impact_loss_j - r.energy_change_j;
+      r.hub_work_j + r.friction_work_j + r.surface_work_j + r.damping_work_j + r.impact_loss_j + r.contact_dissipation_j -
+      r.energy_change_j;
   r.q = q;
   r.qd = qd;
   bool steady = false;
@@ -435,6 +438,7 @@ void PassRecorder::accept(double t, const Eigen::VectorXd& q, const Eigen::Vecto
     normal_time_integral_ += in.normal_impulse;
     s.friction_work_j += in.friction_work;
     s.surface_work_j += in.surface_work;
+    s.contact_dissipation_j += in.contact_dissipation;
     work_ += in.work;
     contact_moment_ += in.contact_moment;
     note_force(std::max(load.normal_force, in.peak_normal_force));
@@ -516,6 +520,20 @@ void PassRecorder::contact_start(double t, const Eigen::VectorXd& q, const Eigen
   last_t_ = t;
 }
 
+void PassRecorder::compliant_touch(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                                   const ContactLoad& load, const std::string& detail) {
+  PassSummary& s = result_.summary;
+  if (!touched_) s.first_impact_deg = system_.beam.theta(t) * 180.0 / M_PI;
+  touched_ = true;
+  if (revolution_ > 0 && std::isnan(rev_first_impact_deg_)) rev_first_impact_deg_ = relative_angle_deg(t);
+  contact_start(t, q, qd, load, detail);
+}
+
+double PassRecorder::contact_energy(double t, const Eigen::VectorXd& q) const {
+  if (system_.law.model != ContactModel::hertz) return 0.0;
+  return hertz_elastic_energy(system_.law.hertz, gap(system_.beam, system_.surface, t, q));
+}
+
 void PassRecorder::contact_end(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                                const std::string& detail) {
   in_episode_ = false;
@@ -585,7 +603,7 @@ void PassRecorder::finish(double t, const Eigen::VectorXd& q, const Eigen::Vecto
   // The hub's work from the angular-momentum balance: dH_z/dt = τ + (R × F)_z, with impulses at impacts.
   s.hub_work_j = system_.beam.hub_motion().omega *
                  (e.angular_momentum - momentum_start_ - contact_moment_ - impulse_moment_);
-  s.energy_change_j = e.kinetic + e.potential - energy_start_;
+  s.energy_change_j = e.kinetic + e.potential + contact_energy(t, q) - energy_start_;
   result_.final_t = t;
   result_.final_q = q;
   result_.final_qd = qd;

@@ -36,6 +36,10 @@ public:
   /// Sustained contact begins with the contact load `load` (a history row is written).
   void contact_start(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const ContactLoad& load,
                      const std::string& detail);
+  /// A compliant (Hertz) contact begins (contact_start with `detail`): the pass's and the
+  /// revolution's first touch angle is set here, since the compliant law has no impacts.
+  void compliant_touch(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const ContactLoad& load,
+                       const std::string& detail);
   void contact_end(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const std::string& detail);
   void event(EventKind kind, double t, const Eigen::VectorXd& q, const std::string& detail);
   /// The pass ends early at t: the tip cannot reach the surface again (simulation.end_when_clear).
@@ -69,7 +73,7 @@ private:
   // Ledger totals and counters at a revolution's start, whose differences make its record.
   struct RevolutionMark {
     double t = 0, energy = 0, momentum = 0, contact_moment = 0, impulse_moment = 0, friction = 0, surface = 0, damping = 0,
-           impact_loss = 0, normal_impulse = 0, contact_time = 0;
+           impact_loss = 0, normal_impulse = 0, contact_time = 0, contact_dissipation = 0;
     int impacts = 0, episodes = 0;
     std::size_t history_rows = 0, events = 0;  // in-memory sizes (runs without a sink)
   };
@@ -87,6 +91,8 @@ private:
   double hub_torque(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const ContactLoad& load);
   void emit(const PassEvent& e);
   double tip_y(double t, const Eigen::VectorXd& q) const;
+  // The elastic energy stored in a compliant contact at (t, q) [J] (0 under the rigid law).
+  double contact_energy(double t, const Eigen::VectorXd& q) const;
 
   const System system_;
   const PassOptions options_;
@@ -109,6 +115,7 @@ private:
   double contact_slip_ = 0;             // the slip direction of the episode's latest contact step
   double last_t_ = 0;
   bool in_episode_ = false;
+  bool touched_ = false;  // a compliant contact has begun in this pass
   double episode_t0_ = 0, episode_theta0_ = 0, episode_y0_ = 0;
   // Energy audit (rotating frame) and the inertial ledger.
   double h_start_ = 0, work_ = 0, impact_jumps_ = 0, energy_scale_ = 0;

@@ -141,6 +141,7 @@ FilamentSteadyState run_distinct(const Config& config, const std::vector<const B
     s.surface_work_j += weight * rec.surface_work_j;
     s.damping_work_j += weight * rec.damping_work_j;
     s.impact_loss_j += weight * rec.impact_loss_j;
+    s.contact_dissipation_j += weight * rec.contact_dissipation_j;
     s.energy_change_j += weight * rec.energy_change_j;
     s.ledger_residual_j = std::max(s.ledger_residual_j, std::abs(rec.ledger_residual_j));
   }
@@ -309,6 +310,7 @@ BrushResult run_brush(const Config& config, const BrushOptions& options) {
     s.surface_work_j += d.surface_work_j;
     s.damping_work_j += d.damping_work_j;
     s.impact_loss_j += d.impact_loss_j;
+    s.contact_dissipation_j += d.contact_dissipation_j;
     s.energy_change_j += d.energy_change_j;
     s.ledger_residual_j += d.ledger_residual_j;
     if (std::isfinite(d.first_contact_deg)) {

@@ -24,6 +24,7 @@ Case build_case(const Config& config) {
     throw ConfigError(e.what());
   }
   c.law = config.contact;
+  c.law.hertz.stiffness = hertz_stiffness(c.law.hertz, config.beam.youngs_modulus_pa, config.beam.diameter_m);
   c.options = config.simulation;
   const int n = config.beam.modes;
   c.initial.rigid_start = config.initial.start == "rigid";
