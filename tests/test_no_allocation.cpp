@@ -9,6 +9,9 @@
 #include "rotbeam/plane.hpp"
 #include "rotbeam/casing.hpp"
 #include "rotbeam/cylinder.hpp"
+#include "rotbeam/case.hpp"
+#include "rotbeam/config.hpp"
+#include "rotbeam/stepper.hpp"
 
 #include <atomic>
 #include <cstdlib>
@@ -127,4 +130,28 @@ TEST(NoAllocation, CounterSeesAllocations) {
   ForeshorteningWorkspace ws(7);
   counting = false;
   EXPECT_GT(allocations.load(), 0);
+}
+
+TEST(NoAllocation, CompliantContactSteps) {
+  // The adaptive scheme's steps inside a compliant (Hertz) contact: the right-hand side (kinematics,
+  // Hertz force, regularised friction, contact load, q̈), the dense output's samples, the gap root
+  // and the peak's refinement allocate nothing once the stepper is warm.
+  for (int n : {1, 5, 12}) {
+    const Case c = build_case(load_config_string("", {"contact.model=hertz", "beam.modes=" + std::to_string(n)}));
+    const System sys = c.system();
+    const std::unique_ptr<Stepper> stepper = make_adaptive_stepper(sys, c.options);
+    FilamentState s(n);
+    s.t = c.beam->time_at(sys.surface.first_contact_angle(c.beam->tip_radius(), c.beam->theta(0.0)));
+    s.phase = Phase::contact;
+    stepper->begin_compliant_contact(s, 0.5);
+    stepper->step(s, 1.0);  // warm-up: odeint sizes its internal states at the first step
+    int steps = 0;
+    allocations = 0;
+    counting = true;
+    for (; steps < 50; ++steps)
+      if (stepper->step(s, 1.0).status != StepStatus::advanced) break;
+    counting = false;
+    EXPECT_EQ(allocations.load(), 0) << "n = " << n << " over " << steps << " steps";
+    EXPECT_GT(steps, 5) << "n = " << n;
+  }
 }

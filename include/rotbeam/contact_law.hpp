@@ -56,13 +56,19 @@ double hertz_stiffness(const HertzContact& hertz, double wire_youngs_pa, double 
 /// m[(u − v0)/c − ln((1 + cu)/(1 + cv0))/c²] = −(2/5) k δ^{5/2} (u = δ̇), so the exit speed u = −e v0 at
 /// δ = 0 depends on x alone: ln((1 + x)/(1 − e x)) = (1 + e) x, solved on (0, 1/e) by TOMS 748 to
 /// double precision (exact for every e, where Hunt and Crossley's c = 3(1 − e)/(2v0) holds only
-/// near e = 1). 0 for e = 1; e = 0 has no finite x (throws std::domain_error for e ≤ 0).
+/// near e = 1). 0 for e = 1. As e → 0, x → 1/e with 1 − e x ≈ (1 + 1/e) e^{−(1 + e)/e}: below
+/// e = kMinCompliantRestitution that gap is under 1e-8 and the exit is lost to rounding, so smaller
+/// e throw std::domain_error.
 double hunt_crossley_product(double e);
+
+/// The smallest restitution the compliant law reproduces (hunt_crossley_product).
+inline constexpr double kMinCompliantRestitution = 0.05;
 
 /// The damping c [s/m] of a compliant contact that starts with normal approach speed v0 = Ċ [m/s]
 /// and full tip speed `full_speed` [m/s]: e from law.impact (a constant, or Yigit's e(v) capped,
-/// without the plastic floor), c = hunt_crossley_product(e) / max(v0, impact.plastic_below_m_s,
-/// 1e-3 m/s). The floor bounds c for grazing touches (their restitution is then above e). SPEC §11.
+/// without the plastic floor, and at least kMinCompliantRestitution), c = hunt_crossley_product(e) /
+/// max(v0, impact.plastic_below_m_s, 1e-3 m/s). The speed floor bounds c for grazing touches (their
+/// restitution is then above e). SPEC §11.
 double hertz_damping(const ContactLaw& law, double v0, double full_speed);
 
 /// The Hertz normal force F_n = max(0, k δ^{3/2}(1 + c δ̇)) [N] at penetration δ [m] (0 for δ ≤ 0)

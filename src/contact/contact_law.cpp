@@ -50,7 +50,8 @@ double hertz_stiffness(const HertzContact& hertz, double wire_youngs_pa, double 
 }
 
 double hunt_crossley_product(double e) {
-  if (!(e > 0.0)) throw std::domain_error("Hunt–Crossley damping: a restitution e <= 0 needs infinite damping");
+  if (!(e >= kMinCompliantRestitution))
+    throw std::domain_error("Hunt–Crossley damping: a restitution below 0.05 is not resolved in double precision");
   if (e >= 1.0 - 1e-14) return 0.0;
   // f(x) = ln(1 + x) − ln(1 − e x) − (1 + e) x: f ≈ −(1 − e²)x²/2 + (1 + e³)x³/3 near 0, → +∞ at 1/e.
   const auto f = [e](double x) { return std::log1p(x) - std::log1p(-e * x) - (1.0 + e) * x; };
@@ -65,7 +66,7 @@ double hunt_crossley_product(double e) {
 double hertz_damping(const ContactLaw& law, double v0, double full_speed) {
   ImpactLaw impact = law.impact;
   impact.plastic_below_m_s = 0.0;  // a compliant contact resolves slow touches in time
-  const double e = restitution(impact, std::abs(v0), full_speed);
+  const double e = std::max(restitution(impact, std::abs(v0), full_speed), kMinCompliantRestitution);
   const double speed = std::max({std::abs(v0), law.impact.plastic_below_m_s, 1e-3});
   return hunt_crossley_product(e) / speed;
 }

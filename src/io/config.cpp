@@ -566,14 +566,15 @@ void check_contact(const toml::table& root, const Config& c) {
   if (c.contact.friction.thesis_forces)
     fail("contact.model", model, "uses the physical forces: it cannot be combined with compat.thesis_forces = true");
   const ImpactLaw& impact = c.contact.impact;
-  if (impact.model == RestitutionModel::constant && !(impact.constant > 0.0)) {
+  const std::string why = "must be at least " + format_number(kMinCompliantRestitution) +
+                          " with contact.model = \"hertz\" (Hunt–Crossley damping for e → 0 grows without bound "
+                          "and below 0.05 its rebound is lost to rounding)";
+  if (impact.model == RestitutionModel::constant && !(impact.constant >= kMinCompliantRestitution)) {
     const toml::node* node = node_of("impact.restitution");
-    fail("impact.restitution", node ? *node : model,
-         "must be above 0 with contact.model = \"hertz\" (Hunt–Crossley damping has no finite value for e = 0)");
+    fail("impact.restitution", node ? *node : model, why);
   }
-  if (!(impact.cap > 0.0))
-    fail("impact.restitution_cap", *node_of("impact.restitution_cap"),
-         "must be above 0 with contact.model = \"hertz\" (Hunt–Crossley damping has no finite value for e = 0)");
+  if (!(impact.cap >= kMinCompliantRestitution))
+    fail("impact.restitution_cap", *node_of("impact.restitution_cap"), why);
 }
 
 void check_surface(const toml::table& root, const Config& c) {
