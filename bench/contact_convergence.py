@@ -12,11 +12,14 @@ impulse, the last separation angle, the steps and the CPU time of the process:
              pass: on the base case, and with μ = 0 and a constant e = 0.5 (where the two laws
              describe the same impacts)
 
+  cost       (--cost) the median CPU time and the steps of `rotbeam run` with either law, 5 and 10
+             modes, both speeds, over --repeats runs
+
 Results go to a JSON file (--out); --plot draws docs/images/contact_convergence.png from it and
 prints the tables in Markdown. Both steps: bench/contact_convergence.py --out results.json --plot.
 
 Usage: bench/contact_convergence.py [--rotbeam build/rotbeam] [--out FILE] [--modes 3:20]
-                                    [--skip-runs] [--plot] [--image PNG]
+                                    [--skip-runs] [--plot] [--image PNG] [--cost [--repeats 5]]
 """
 import argparse
 import json
@@ -81,6 +84,21 @@ def run_all(rotbeam, modes):
             print(f"{name} k={k}: {row}", file=sys.stderr, flush=True)
         results["stiffness"][name] = rows
     return results
+
+
+def cost(rotbeam, repeats):
+    import statistics
+    out = ["| case | n | rigid: steps | rigid: CPU [s] | hertz: steps | hertz: CPU [s] | hertz / rigid CPU |",
+           "|---|---|---|---|---|---|---|"]
+    for name, sets in CASES.items():
+        for n in (5, 10):
+            med = {}
+            for law in ("rigid", "hertz"):
+                rows = [run_cli(rotbeam, sets + [f"beam.modes={n}", f"contact.model={law}"]) for _ in range(repeats)]
+                med[law] = (rows[0]["steps"], statistics.median(r["cpu_s"] for r in rows))
+            out.append(f"| {name} | {n} | {med['rigid'][0]} | {med['rigid'][1]:.3f} | {med['hertz'][0]} | "
+                       f"{med['hertz'][1]:.3f} | {med['hertz'][1] / med['rigid'][1]:.2f} |")
+    return "\n".join(out)
 
 
 def fmt(v, spec):
@@ -169,7 +187,12 @@ def main():
     ap.add_argument("--skip-runs", action="store_true", help="only tabulate and plot --out")
     ap.add_argument("--plot", action="store_true")
     ap.add_argument("--image", default=str(REPO / "docs" / "images" / "contact_convergence.png"))
+    ap.add_argument("--cost", action="store_true", help="only the cost table (median CPU over --repeats runs)")
+    ap.add_argument("--repeats", type=int, default=5)
     args = ap.parse_args()
+    if args.cost:
+        print(cost(args.rotbeam, args.repeats))
+        return
     if not args.skip_runs:
         a, b = (int(x) for x in args.modes.split(":"))
         results = run_all(args.rotbeam, list(range(a, b + 1)))

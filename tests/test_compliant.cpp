@@ -182,6 +182,39 @@ TEST(Compliant, TheEnergyLedgerClosesWithTheContactDissipation) {
   EXPECT_GT(hertz_elastic_energy(k.law.hertz, delta), 1e-4 * std::abs(inside.summary.hub_work_j));
 }
 
+TEST(Compliant, ContactsBeginAndEndAtTheSurface) {
+  // The contact start and end are gap roots: the rows written there (free flight's last row, the
+  // contact_end row) have |C| below 1e-11 m (events to 1e-13 s at tip speeds of ≤ 10 m/s, 1e-12 m,
+  // with room for the dense output's error); inside a contact C > 0 and F_n ≥ 0, λ = −F_n, and in
+  // free flight no force. An end reported at the sample after the crossing (not the root) leaves
+  // |C| ~ 1e-8 m. Two speeds and frictions, a flexible start.
+  for (const auto& sets : std::vector<std::vector<std::string>>{
+           {}, {"hub.speed_rpm=3000", "surface.friction=0.1"}, {"initial.modal_velocity=[2,0,0,0,0]", "surface.friction=0"}}) {
+    std::vector<std::string> s = sets;
+    s.push_back("contact.model=hertz");
+    const PassResult r = run(s);
+    ASSERT_FALSE(r.failure);
+    int ends = 0;
+    for (std::size_t i = 1; i < r.history.size(); ++i) {
+      const HistoryRow& a = r.history[i - 1];
+      const HistoryRow& b = r.history[i];
+      if (b.phase == Phase::contact) {
+        EXPECT_GE(b.normal_force, 0.0);
+        EXPECT_EQ(b.lambda, -b.normal_force);
+        EXPECT_GT(b.gap, -1e-11) << b.t;
+      } else {
+        EXPECT_EQ(b.normal_force, 0.0);
+      }
+      if (a.phase == Phase::contact && b.phase == Phase::free) {
+        ++ends;
+        EXPECT_LT(std::abs(b.gap), 1e-11) << "contact end at t = " << b.t;
+      }
+      if (a.phase == Phase::free && b.phase == Phase::contact) EXPECT_LT(std::abs(b.gap), 1e-11) << "start " << b.t;
+    }
+    EXPECT_EQ(ends, r.summary.contact_episodes);
+  }
+}
+
 TEST(Compliant, RevolutionsCloseTheirLedgers) {
   // Two revolutions at 1000 rpm and 4 %: each revolution touches, and its ledger (with its contact
   // dissipation) closes.
