@@ -229,6 +229,27 @@ TEST(Compliant, RevolutionsCloseTheirLedgers) {
   }
 }
 
+TEST(Compliant, TheFirstContactConvergesInTheNumberOfModes) {
+  // The rigid start's first contact at 550 rpm, μ = 0 (to θ = −7.9°, after it ends): its normal
+  // impulse and peak force against n. Measured peak 28.68 / 21.91 / 19.56 / 17.63 / 17.75 N at
+  // n = 10 / 16 / 20 / 30 / 40, impulse 3.3678 / 3.3345 / 3.3234 / 3.32143 / 3.32139e-4 N s: the
+  // impulse has settled by n = 16, the peak needs the modes up to the Hertz contact's frequency
+  // (n ≈ 30). Bounds: impulse n = 16 vs 20 within 0.5 %; peak n = 16 vs 20 within 15 %, n = 30 vs 40
+  // within 2 %. The rigid law's first impact has no force to converge (an impulse; SPEC §10).
+  auto first_contact = [](int n) {
+    const PassResult r = run({"contact.model=hertz", "surface.friction=0", "simulation.end_angle_deg=-7.9",
+                              "beam.modes=" + std::to_string(n)});
+    EXPECT_FALSE(r.failure);
+    EXPECT_EQ(r.summary.contact_episodes, 1) << n;
+    return std::array<double, 2>{r.summary.peak_normal_force_n, r.summary.normal_impulse_n_s};
+  };
+  const auto n16 = first_contact(16), n20 = first_contact(20), n30 = first_contact(30), n40 = first_contact(40);
+  EXPECT_NEAR(n16[1] / n20[1], 1.0, 5e-3);
+  EXPECT_NEAR(n16[0] / n20[0], 1.0, 0.15);
+  EXPECT_NEAR(n30[0] / n40[0], 1.0, 0.02);
+  EXPECT_NEAR(n30[1] / n40[1], 1.0, 1e-4);
+}
+
 TEST(Compliant, TheRigidLimit) {
   // As E* grows the compliant pass approaches the rigid one. With μ = 0 and a constant e = 0.5 the
   // two laws describe the same impacts (no friction during the compliant contact, no plastic floor
