@@ -174,8 +174,9 @@ TEST(Config, ResolvedJsonRoundTripsThroughToml) {
   // near_surface_gap_m, bin_deg}, simulation.{integrating_factor, end_when_clear}, brush.{filaments,
   // rows, row_phase_deg, phase_jitter_deg, length_scatter, diameter_scatter, seed}, surface.{shape,
   // radius_m, speed_rpm, clearance_m, lobes, lobe_amplitude_m, lobe_law}, beam.theory,
-  // model.{centrifugal, coriolis}
-  EXPECT_EQ(config_keys().size(), 63u);
+  // model.{centrifugal, coriolis}, contact.{model, tip_radius_m, friction_regularization_m_s,
+  // stiffness_factor}, surface.{youngs_modulus_pa, poisson}, beam.poisson
+  EXPECT_EQ(config_keys().size(), 70u);
   // The theory and the switches appear where they differ from the thesis's, and read back.
   EXPECT_FALSE(j["beam"].contains("theory"));
   EXPECT_FALSE(j.contains("model"));
