@@ -148,12 +148,13 @@ def plot(results, image):
             rows = results["modes"][f"{name} {law}"]
             n = [r["n"] for r in rows]
             kw = dict(styles[law], linestyle=lines[name], label=f"{law}, {name}", markersize=4)
-            axes[0, 0].plot(n, [r["peak_normal_force_n"] for r in rows], **kw)
+            # A pass of impacts alone has no force (0): not drawn on the log axis.
+            axes[0, 0].plot(n, [r["peak_normal_force_n"] or float("nan") for r in rows], **kw)
             axes[0, 1].plot(n, [r["normal_impulse_n_s"] * 1e3 for r in rows], **kw)
             axes[1, 0].plot(n, [r["impacts"] + r["contact_episodes"] if law == "rigid" else r["contact_episodes"]
                                 for r in rows], **kw)
     axes[0, 0].set_yscale("log")
-    axes[0, 0].set_ylabel("peak normal force [N]")
+    axes[0, 0].set_ylabel("peak normal force [N] (rigid: sustained contact only)")
     axes[0, 1].set_ylabel("total normal impulse [mN s]")
     axes[1, 0].set_ylabel("contacts per pass (rigid: impacts + episodes) [-]")
     axes[1, 0].set_yscale("log")
@@ -166,9 +167,9 @@ def plot(results, image):
         rigid = rows[0]
         k = [r["k"] for r in rows[1:]]
         ax.plot(k, [abs(r["normal_impulse_n_s"] / rigid["normal_impulse_n_s"] - 1) for r in rows[1:]], marker="o",
-                label=f"|impulse/rigid − 1|, {name}")
+                label=f"|impulse/rigid − 1|, {name.replace('mu', 'μ')}")
         ax.plot(k, [abs(r["last_separation_deg"] - rigid["last_separation_deg"]) / 10.0 for r in rows[1:]],
-                marker="s", linestyle="--", label=f"|last separation − rigid| / 10°, {name}")
+                marker="s", linestyle="--", label=f"|last separation − rigid| / 10°, {name.replace('mu', 'μ')}")
     ax.set_yscale("log")
     ax.set_xlabel("contact stiffness E* × 10^k: k [-]")
     ax.set_ylabel("distance from the rigid pass [-]")
