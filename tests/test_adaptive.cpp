@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <gtest/gtest.h>
+#include <limits>
 
 using namespace rotbeam;
 
@@ -43,7 +44,11 @@ TEST(Adaptive, BaseCaseSettlesToSixDigitsAsTheToleranceTightens) {
 
 TEST(Adaptive, ImpactsAreLocatedToAPicosecond) {
   // At every impact the gap must be within |V_X|·1e-12 s of zero (the events are bracketed to
-  // 1e-13 s; the recorded state is the dense-output state at the bracket's end).
+  // 1e-13 s; the recorded state is the dense-output state at the bracket's end), or, for the slowest
+  // touches (V_X below 1e-4 m/s), within the gap's own round-off: X_t − d from products of terms
+  // of size r_h + L = 0.127 m, a few ulps of which is 16 ε (r_h + L) = 4.5e-16 m (measured up to
+  // 2.5e-16 m: 9 ulps, depending on the compiler's inlining).
+  const double roundoff_m = 16 * std::numeric_limits<double>::epsilon() * 0.127;
   const PassResult r = adaptive(1e-10, 1e30);
   ASSERT_FALSE(r.failure);
   int checked = 0;
@@ -52,7 +57,7 @@ TEST(Adaptive, ImpactsAreLocatedToAPicosecond) {
     const HistoryRow& after = r.history[i + 1];
     if (before.t != after.t || before.vx <= 0.0 || after.vx > before.vx) continue;  // an impact pair
     ++checked;
-    EXPECT_LE(std::abs(before.gap), 1e-12 * before.vx + 1e-16) << "impact at t = " << before.t;
+    EXPECT_LE(std::abs(before.gap), 1e-12 * before.vx + roundoff_m) << "impact at t = " << before.t;
   }
   EXPECT_GE(checked, 10);
 }
