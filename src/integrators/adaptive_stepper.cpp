@@ -212,13 +212,7 @@ private:
       const ContactLoad load = contact_load(sys_.law.friction, tip_, qd, -fn, slip, force_);
       acceleration(sys_.beam, q, qd, &force_, *ws_, a);
       motion_derivative(dxdt);
-      dxdt[2 * n_] = load.power;
-      dxdt[2 * n_ + 1] = load.slip_power;
-      dxdt[2 * n_ + 2] = load.normal_force;
-      dxdt[2 * n_ + 3] = load.moment;
-      dxdt[2 * n_ + kSurfaceWork] = load.surface_power;
-      dxdt[2 * n_ + kDampingWork] = damped_ ? -sys_.beam.dissipation(qd) : 0.0;
-      dxdt[2 * n_ + kContactDissipation] = hertz_dissipation_rate(hertz, fn, tip_.gap, tip_.gap_rate);
+      integral_rates(load, qd, hertz_dissipation_rate(hertz, fn, tip_.gap, tip_.gap_rate), dxdt);
       return;
     }
     const AccelerationMultiplier am =
@@ -234,13 +228,19 @@ private:
     a = force_ - ws_->psi;
     ws_->mass_llt.solveInPlace(a);
     motion_derivative(dxdt);
+    integral_rates(load, qd, 0.0, dxdt);
+  }
+
+  // The rates of the contact step's integrals (the ledger's terms) from its load, the beam's damping
+  // at q̇ and a compliant contact's dissipation rate [W].
+  void integral_rates(const ContactLoad& load, const Eigen::VectorXd& qd, double contact_dissipation, State& dxdt) {
     dxdt[2 * n_] = load.power;
     dxdt[2 * n_ + 1] = load.slip_power;
     dxdt[2 * n_ + 2] = load.normal_force;
     dxdt[2 * n_ + 3] = load.moment;
     dxdt[2 * n_ + kSurfaceWork] = load.surface_power;
     dxdt[2 * n_ + kDampingWork] = damped_ ? -sys_.beam.dissipation(qd) : 0.0;
-    dxdt[2 * n_ + kContactDissipation] = 0.0;
+    dxdt[2 * n_ + kContactDissipation] = contact_dissipation;
   }
 
   // The derivative of the motion's part of x from q̇ (pqd_) and q̈ (pa_) at the state of the last
