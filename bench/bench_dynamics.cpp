@@ -1,6 +1,7 @@
 // Micro-benchmarks of the model core: q̈(q, q̇) for several mode counts, the modal integrals, and
 // one whole free pass (θ0 → +90°) with the thesis's fixed-step RK5.
 #include "rotbeam/dynamics.hpp"
+#include "rotbeam/contact_laws.hpp"
 #include "rotbeam/elastica_beam.hpp"
 #include "rotbeam/modal_integrals.hpp"
 #include "rotbeam/plane.hpp"
@@ -85,7 +86,7 @@ void BM_FreePass(benchmark::State& state) {
   const double t_end = model.time_at(M_PI / 2);
   long steps = 0, rhs = 0;
   for (auto _ : state) {
-    const auto stepper = make_thesis_stepper({model, far, {}}, opt);
+    const auto stepper = make_thesis_stepper({model, far, default_contact_law()}, opt);
     FilamentState s(n);
     s.qd[0] = 2.0;
     stepper->begin_free(s, FreeStart::pass_start);

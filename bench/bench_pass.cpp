@@ -2,6 +2,7 @@
 // the thesis scheme at its default steps, the adaptive scheme at rtol 1e-8, and the 80-case
 // Table 5-2 grid with the adaptive scheme spread over all cores.
 #include "rotbeam/case.hpp"
+#include "rotbeam/contact_laws.hpp"
 #include "rotbeam/job_runner.hpp"
 #include "rotbeam/plane.hpp"
 #include "table_5_2.hpp"
@@ -23,7 +24,7 @@ void base_case_passes(benchmark::State& state, PassOptions opt, int modes, doubl
   opt.output_interval_s = 1e-4;
   PassSummary s;
   for (auto _ : state) {
-    const PassResult r = run_pass({model, plane, ContactLaw{}}, ic, opt);
+    const PassResult r = run_pass({model, plane, default_contact_law()}, ic, opt);
     s = r.summary;
     benchmark::DoNotOptimize(r.history.data());
   }

@@ -1,6 +1,7 @@
 // rotbeam._core: the C++ library's jobs for Python, with the GIL released while they compute.
 // Configuration errors raise rotbeam._core.ConfigError (a ValueError) with the CLI's message.
 #include "rotbeam/brush.hpp"
+#include "rotbeam/units.hpp"
 #include "rotbeam/brush_output.hpp"
 #include "rotbeam/case.hpp"
 #include "rotbeam/process_memory.hpp"
@@ -163,7 +164,7 @@ py::tuple brush(const std::optional<std::string>& path, const Values& overrides,
     options.stop = &stop;
     return run_brush(config, options);
   });
-  const double omega = config.beam.speed_rpm * M_PI / 30.0;
+  const double omega = rad_per_s_from_rpm(config.beam.speed_rpm);
   return py::make_tuple(from_json(brush_summary_json(result, config)), py::bytes(workpiece_csv(result, omega)),
                         py::bytes(profile_csv(result, omega)), py::bytes(filaments_csv(result)));
 }

@@ -17,9 +17,9 @@ PassResult run(const std::vector<std::string>& sets, double interval = 1e30) {
 }
 
 double ledger_residual(const PassSummary& s) {
-  const double scale = std::max({std::abs(s.hub_work_j), std::abs(s.friction_work_j), std::abs(s.impact_loss_j),
-                                 std::abs(s.damping_work_j), std::abs(s.energy_change_j)});
-  return std::abs(s.energy_change_j - (s.hub_work_j + s.friction_work_j + s.damping_work_j + s.impact_loss_j)) / scale;
+  const double scale = std::max({std::abs(s.ledger[LedgerTerm::hub_work]), std::abs(s.ledger[LedgerTerm::friction_work]), std::abs(s.ledger[LedgerTerm::impact_loss]),
+                                 std::abs(s.ledger[LedgerTerm::damping_work]), std::abs(s.ledger.energy_change_j)});
+  return std::abs(s.ledger.energy_change_j - (s.ledger[LedgerTerm::hub_work] + s.ledger[LedgerTerm::friction_work] + s.ledger[LedgerTerm::damping_work] + s.ledger[LedgerTerm::impact_loss])) / scale;
 }
 
 const std::vector<std::vector<std::string>> kCases = {
@@ -56,8 +56,8 @@ TEST(Accuracy, DefaultToleranceMatchesATightRun) {
     };
     near(s.last_separation_deg, r.last_separation_deg, "last separation");
     near(s.contact_time_s, r.contact_time_s, "contact time");
-    near(s.normal_impulse_n_s, r.normal_impulse_n_s, "normal impulse");
-    near(s.friction_work_j, r.friction_work_j, "friction work");
+    near(s.ledger[LedgerTerm::normal_impulse], r.ledger[LedgerTerm::normal_impulse], "normal impulse");
+    near(s.ledger[LedgerTerm::friction_work], r.ledger[LedgerTerm::friction_work], "friction work");
     near(s.peak_normal_force_n, r.peak_normal_force_n, "peak normal force");
     EXPECT_LE(ledger_residual(s), 5e-8) << sets[0];
     EXPECT_LE(ledger_residual(r), 2e-10) << sets[0];

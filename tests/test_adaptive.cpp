@@ -6,6 +6,8 @@
 #include "rotbeam/plane.hpp"
 
 #include <cmath>
+#include "test_support.hpp"
+
 #include <gtest/gtest.h>
 #include <limits>
 
@@ -28,9 +30,9 @@ TEST(Adaptive, BaseCaseSettlesToSixDigitsAsTheToleranceTightens) {
     const PassResult r = adaptive(rtol);
     ASSERT_FALSE(r.failure) << r.failure->message;
     sep.push_back(r.summary.last_separation_deg);
-    imp.push_back(r.summary.normal_impulse_n_s);
+    imp.push_back(r.summary.ledger[LedgerTerm::normal_impulse]);
     std::printf("rtol %.0e: last separation %.10f deg, normal impulse %.10e N s, impacts %d, episodes %d, audit %.2e\n",
-                rtol, r.summary.last_separation_deg, r.summary.normal_impulse_n_s, r.summary.impacts,
+                rtol, r.summary.last_separation_deg, r.summary.ledger[LedgerTerm::normal_impulse], r.summary.impacts,
                 r.summary.contact_episodes, r.summary.energy_audit_residual);
   }
   for (int i = 1; i <= 2; ++i) {
@@ -79,7 +81,7 @@ TEST(Adaptive, JacobiIntegralOverAFreePassAtTightTolerance) {
     opt.rtol = 1e-12;
     opt.atol = 1e-15;
     opt.output_interval_s = 1e-4;
-    const PassResult r = run_pass({model, plane, {}}, ic, opt);
+    const PassResult r = run_pass({model, plane, default_contact_law()}, ic, opt);
     ASSERT_FALSE(r.failure);
     EXPECT_EQ(r.summary.impacts, 0);
     const double h0 = r.history.front().jacobi;
@@ -102,11 +104,11 @@ TEST(Adaptive, ThesisSchemeErrorFallsWithItsStep) {
   ladder.modes = {};
   const ConvergenceStudy s = run_convergence(c, ladder, 0);
   ASSERT_EQ(s.runs.size(), 5u);
-  const double ref = s.runs[0].summary.normal_impulse_n_s;
+  const double ref = s.runs[0].summary.ledger[LedgerTerm::normal_impulse];
   std::vector<double> err;
   for (std::size_t i = 1; i < s.runs.size(); ++i) {
     ASSERT_TRUE(s.runs[i].failure.empty()) << s.runs[i].failure;
-    err.push_back(std::abs(s.runs[i].summary.normal_impulse_n_s - ref) / ref);
+    err.push_back(std::abs(s.runs[i].summary.ledger[LedgerTerm::normal_impulse] - ref) / ref);
     std::printf("%s: normal impulse error %.3e\n", s.runs[i].label.c_str(), err.back());
   }
   for (std::size_t i = 1; i < err.size(); ++i) {

@@ -84,25 +84,25 @@ TEST(Brush, IdenticalFilamentsGiveNTimesOneFilament) {
       const BrushResult b = brush(sets);
       ASSERT_FALSE(b.summary.failure);
       EXPECT_EQ(b.summary.distinct_filaments, 1);
-      EXPECT_LT(rel(b.summary.mean_normal_force_n, n * last.normal_impulse_n_s / period), 1e-9) << n;
+      EXPECT_LT(rel(b.summary.mean_normal_force_n, n * last.ledger[LedgerTerm::normal_impulse] / period), 1e-9) << n;
       EXPECT_LT(rel(b.summary.mean_hub_torque_n_m, n * last.mean_hub_torque_n_m), 1e-9) << n;
       EXPECT_LT(rel(b.summary.mean_hub_power_w, n * last.mean_hub_power_w), 1e-9) << n;
-      EXPECT_LT(rel(b.summary.hub_work_j, n * last.hub_work_j), 1e-9) << n;
-      EXPECT_LT(rel(b.summary.friction_work_j, n * last.friction_work_j), 1e-9) << n;
+      EXPECT_LT(rel(b.summary.ledger[LedgerTerm::hub_work], n * last.ledger[LedgerTerm::hub_work]), 1e-9) << n;
+      EXPECT_LT(rel(b.summary.ledger[LedgerTerm::friction_work], n * last.ledger[LedgerTerm::friction_work]), 1e-9) << n;
       // The workpiece's bins carry the same momentum as the means.
       double normal = 0, hub = 0;
       for (const ForceBin& f : b.workpiece) {
         normal += f.normal_impulse_n_s;
         hub += f.hub_angular_impulse_n_m_s;
       }
-      EXPECT_LT(rel(normal, n * last.normal_impulse_n_s), 1e-9) << n;
+      EXPECT_LT(rel(normal, n * last.ledger[LedgerTerm::normal_impulse]), 1e-9) << n;
       // The profile is the mean filament at its own angle: n times it carries the same momentum.
       double profile = 0;
       for (const ForceBin& f : b.profile) profile += f.normal_impulse_n_s;
-      EXPECT_LT(rel(n * profile, n * last.normal_impulse_n_s), 1e-12) << n;
+      EXPECT_LT(rel(n * profile, n * last.ledger[LedgerTerm::normal_impulse]), 1e-12) << n;
       // ω Σ(hub angular impulse) over a revolution is its hub work: the deliveries telescope ΔH_z.
       const double omega = 2.0 * M_PI / period;
-      EXPECT_LT(rel(omega * hub, n * last.hub_work_j), 1e-9) << n;
+      EXPECT_LT(rel(omega * hub, n * last.ledger[LedgerTerm::hub_work]), 1e-9) << n;
     }
   }
 }
@@ -157,12 +157,12 @@ TEST(Brush, LedgerClosesPerRevolution) {
   ASSERT_FALSE(b.summary.failure);
   const BrushSummary& s = b.summary;
   EXPECT_GT(s.distinct_filaments, 1);
-  const double sum = s.hub_work_j + s.friction_work_j + s.surface_work_j + s.damping_work_j + s.impact_loss_j;
-  EXPECT_LT(std::abs(sum - s.energy_change_j), 1e-8 * std::abs(s.hub_work_j));
-  EXPECT_LT(std::abs(s.energy_change_j), 1e-6 * std::abs(s.hub_work_j));  // steady: the filaments end where they began
-  EXPECT_GT(s.hub_work_j, 0.0);
-  EXPECT_LT(s.friction_work_j, 0.0);
-  EXPECT_LT(s.damping_work_j, 0.0);
+  const double sum = s.ledger[LedgerTerm::hub_work] + s.ledger[LedgerTerm::friction_work] + s.ledger[LedgerTerm::surface_work] + s.ledger[LedgerTerm::damping_work] + s.ledger[LedgerTerm::impact_loss];
+  EXPECT_LT(std::abs(sum - s.ledger.energy_change_j), 1e-8 * std::abs(s.ledger[LedgerTerm::hub_work]));
+  EXPECT_LT(std::abs(s.ledger.energy_change_j), 1e-6 * std::abs(s.ledger[LedgerTerm::hub_work]));  // steady: the filaments end where they began
+  EXPECT_GT(s.ledger[LedgerTerm::hub_work], 0.0);
+  EXPECT_LT(s.ledger[LedgerTerm::friction_work], 0.0);
+  EXPECT_LT(s.ledger[LedgerTerm::damping_work], 0.0);
 }
 
 // A seed gives the same brush, bit for bit, whatever the thread count; another seed another one.

@@ -6,6 +6,8 @@
 #include "rotbeam/rigid_contact.hpp"
 
 #include <cmath>
+#include "test_support.hpp"
+
 #include <gtest/gtest.h>
 
 using namespace rotbeam;
@@ -83,7 +85,7 @@ PassResult base_pass(double rpm, int modes, double mu, double plastic_below, dou
   PassOptions opt;
   opt.scheme = Scheme::thesis;
   opt.output_interval_s = interval;
-  return run_pass({model, plane, {FrictionModel{mu, false}, law}}, ic, opt);
+  return run_pass({model, plane, *test::rigid_law({mu, false}, law)}, ic, opt);
 }
 }  // namespace
 
@@ -149,7 +151,7 @@ TEST(ThesisPass, ElasticFrictionlessPassClosesTheEnergyAudit) {
   PassOptions opt;
   opt.scheme = Scheme::thesis;
   opt.max_impacts = 2000;
-  const PassResult r = run_pass({model, plane, {FrictionModel{0.0, false}, law}}, ic, opt);
+  const PassResult r = run_pass({model, plane, *test::rigid_law({0.0, false}, law)}, ic, opt);
   ASSERT_FALSE(r.failure) << r.failure->message;
   std::printf("e = 1, μ = 0: %d impacts, %d contact episodes, residual %.2e\n", r.summary.impacts,
               r.summary.contact_episodes, r.summary.energy_audit_residual);
@@ -172,8 +174,8 @@ TEST(ThesisPass, EnergyAuditWithContactShrinksWithTheStep) {
   coarse.end_angle_deg = fine.end_angle_deg = -4.0;  // the first contact episodes
   fine.contact_step_s = 2.5e-8;
   fine.fine_contact_step_s = 2.5e-9;
-  const PassResult a = run_pass({model, plane, {FrictionModel{0.4, false}, law}}, ic, coarse);
-  const PassResult b = run_pass({model, plane, {FrictionModel{0.4, false}, law}}, ic, fine);
+  const PassResult a = run_pass({model, plane, *test::rigid_law({0.4, false}, law)}, ic, coarse);
+  const PassResult b = run_pass({model, plane, *test::rigid_law({0.4, false}, law)}, ic, fine);
   ASSERT_FALSE(a.failure);
   ASSERT_FALSE(b.failure);
   std::printf("audit residual: h = 1e-7 s: %.3e, h = 2.5e-8 s: %.3e\n", a.summary.energy_audit_residual,
@@ -191,7 +193,7 @@ TEST(ThesisPass, NoImpactWhenTheSurfaceIsOutOfReach) {
   PassOptions opt;
   opt.scheme = Scheme::thesis;
   opt.end_angle_deg = -20.0;  // ends before the rigid contact angle −8.1°
-  const PassResult r = run_pass({model, plane, {}}, ic, opt);
+  const PassResult r = run_pass({model, plane, default_contact_law()}, ic, opt);
   EXPECT_FALSE(r.failure);
   EXPECT_EQ(r.summary.impacts, 0);
   EXPECT_TRUE(std::isnan(r.summary.first_impact_deg));
@@ -209,7 +211,7 @@ TEST(ThesisPass, ThesisForceConventionScalesTheReportedForceByTheGradientNorm) {
   opt.scheme = Scheme::thesis;
   opt.output_interval_s = 0.0;
   opt.end_angle_deg = -5.0;
-  const PassResult r = run_pass({model, plane, {FrictionModel{0.4, true}, law}}, ic, opt);
+  const PassResult r = run_pass({model, plane, *test::rigid_law({0.4, true}, law)}, ic, opt);
   ASSERT_FALSE(r.failure);
   TipKinematics tip(model.n);
   int rows = 0;

@@ -16,6 +16,8 @@
 #include <boost/numeric/odeint.hpp>
 #include <cmath>
 #include <cstdio>
+#include "test_support.hpp"
+
 #include <gtest/gtest.h>
 
 using namespace rotbeam;
@@ -220,7 +222,7 @@ namespace {
 std::vector<double> free_tip_y(const BeamModel& beam, const Eigen::VectorXd& v0, const std::vector<double>& times,
                                double* jacobi_drift = nullptr, double* vibration = nullptr) {
   const Plane far(1.0);
-  const System system{beam, far, {}};
+  const System system{beam, far, default_contact_law()};
   PassOptions opt;
   opt.rtol = 1e-12;
   opt.atol = 1e-15;
@@ -399,10 +401,10 @@ PassSummary run_text(const std::string& toml) {
   return run_case(c).summary;
 }
 void expect_ledger(const PassSummary& s, const std::string& what) {
-  const double terms = std::max({std::abs(s.hub_work_j), std::abs(s.friction_work_j), std::abs(s.impact_loss_j),
-                                 std::abs(s.energy_change_j), std::abs(s.damping_work_j)});
-  const double residual = s.hub_work_j + s.friction_work_j + s.surface_work_j + s.damping_work_j + s.impact_loss_j -
-                          s.energy_change_j;
+  const double terms = std::max({std::abs(s.ledger[LedgerTerm::hub_work]), std::abs(s.ledger[LedgerTerm::friction_work]), std::abs(s.ledger[LedgerTerm::impact_loss]),
+                                 std::abs(s.ledger.energy_change_j), std::abs(s.ledger[LedgerTerm::damping_work])});
+  const double residual = s.ledger[LedgerTerm::hub_work] + s.ledger[LedgerTerm::friction_work] + s.ledger[LedgerTerm::surface_work] + s.ledger[LedgerTerm::damping_work] + s.ledger[LedgerTerm::impact_loss] -
+                          s.ledger.energy_change_j;
   EXPECT_LE(std::abs(residual), 1e-7 * terms) << what;
   EXPECT_LE(s.energy_audit_residual, 1e-7) << what;
 }
@@ -422,8 +424,8 @@ TEST(ElasticaPass, TheBaseCaseRunsUnderBothSchemesWithItsLedgersClosed) {
   EXPECT_GT(fore.max_tip_deflection_ratio, 0.2);
   std::printf("foreshortening: sep %.4f°, impulse %.6e N s, peak %.4f N, %d impacts; elastica: sep %.4f°, impulse %.6e "
               "N s, peak %.4f N, %d impacts\n",
-              fore.last_separation_deg, fore.normal_impulse_n_s, fore.peak_normal_force_n, fore.impacts,
-              ela.last_separation_deg, ela.normal_impulse_n_s, ela.peak_normal_force_n, ela.impacts);
+              fore.last_separation_deg, fore.ledger[LedgerTerm::normal_impulse], fore.peak_normal_force_n, fore.impacts,
+              ela.last_separation_deg, ela.ledger[LedgerTerm::normal_impulse], ela.peak_normal_force_n, ela.impacts);
   // The thesis's fixed steps: its audit is the scheme's, 9.6e-4 for the thesis model on this case;
   // the elastica's must be no worse than twice that.
   const PassSummary thesis = run_text("[beam]\ntheory = \"elastica\"\n[simulation]\nscheme = \"thesis\"\n");

@@ -2,6 +2,8 @@
 #include "reference_beam.hpp"
 #include "rotbeam/energy.hpp"
 
+#include "test_support.hpp"
+
 #include <gtest/gtest.h>
 
 using namespace rotbeam;
@@ -69,7 +71,7 @@ TEST(HubTorque, WorkOfTheHubEqualsTheChangeOfInertialEnergyInFreeFlight) {
   opt.atol = 1e-15;
   opt.output_interval_s = 0.0;
   opt.max_step_s = 1e-6;  // rows (steps) ~µs apart whatever the scheme's own step: the trapezoid's error stays ~1e-8
-  const PassResult r = run_pass({model, plane, {}}, ic, opt);
+  const PassResult r = run_pass({model, plane, default_contact_law()}, ic, opt);
   ASSERT_FALSE(r.failure);
   ForeshorteningWorkspace ws(5);
   auto energy = [&](const HistoryRow& row) {

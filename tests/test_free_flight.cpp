@@ -8,6 +8,8 @@
 
 #include <cmath>
 #include <functional>
+#include "test_support.hpp"
+
 #include <gtest/gtest.h>
 
 using namespace rotbeam;
@@ -37,7 +39,7 @@ FreeFlight free_flight(const ForeshorteningBeam& model, const Surface& surface, 
   PassOptions opt;
   opt.scheme = Scheme::thesis;
   opt.free_step_s = step;
-  const System system{model, surface, {}};
+  const System system{model, surface, default_contact_law()};
   const auto stepper = make_thesis_stepper(system, opt);
   FilamentState s(model.n);
   s.q = q0;

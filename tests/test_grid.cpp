@@ -4,6 +4,8 @@
 #include "rotbeam/dynamics.hpp"
 #include "rotbeam/plane.hpp"
 
+#include "test_support.hpp"
+
 #include <gtest/gtest.h>
 #include <set>
 
@@ -47,7 +49,7 @@ TEST(Grid, Table52RigidStartsComplete) {
         PassOptions opt;
         opt.scheme = Scheme::thesis;
         opt.output_interval_s = 1e-3;
-        const PassResult r = run_pass({model, plane, {FrictionModel{mu, false}, ImpactLaw{}}}, ic, opt);
+        const PassResult r = run_pass({model, plane, *test::rigid_law({mu, false}, {})}, ic, opt);
         char label[64];
         std::snprintf(label, sizeof label, "%4.0f rpm %2.0f %% μ %.1f", rpm, depth * 100, mu);
         check(r, label, tally);
@@ -74,7 +76,7 @@ TEST(Grid, Figure12FlexibleStartsComplete) {
     PassOptions opt;
     opt.scheme = Scheme::thesis;
     opt.output_interval_s = 1e-3;
-    const PassResult r = run_pass({model, plane, {FrictionModel{0.4, false}, ImpactLaw{}}}, ic, opt);
+    const PassResult r = run_pass({model, plane, *test::rigid_law({0.4, false}, {})}, ic, opt);
     check(r, "q̇_" + std::to_string(k + 1) + " = 0.1", tally);
     std::printf("q̇_%d = 0.1: first impact %.4f°, impacts %d, episodes %d, last separation %.3f°\n", k + 1,
                 r.summary.first_impact_deg, r.summary.impacts, r.summary.contact_episodes,

@@ -88,7 +88,7 @@ TEST(ForceBins, APassesBinsHoldItsImpulseAndTheMeanForceOfItsRows) {
     ASSERT_FALSE(r.failure) << r.failure->message;
     const PassSummary& s = r.summary;
     ASSERT_FALSE(r.force_bins.empty());
-    EXPECT_NEAR(sum_normal(r.force_bins), s.normal_impulse_n_s, 1e-12 * s.normal_impulse_n_s);
+    EXPECT_NEAR(sum_normal(r.force_bins), s.ledger[LedgerTerm::normal_impulse], 1e-12 * s.ledger[LedgerTerm::normal_impulse]);
     int impacts = 0;
     for (const ForceBin& b : r.force_bins) impacts += b.impacts;
     EXPECT_EQ(impacts, s.impacts);
@@ -126,8 +126,8 @@ TEST(ForceBins, APassesBinsHoldItsImpulseAndTheMeanForceOfItsRows) {
   // Many revolutions: the bins are the last complete revolution's, summing to its impulse.
   const PassResult many = run({"hub.speed_rpm=300", "beam.modes=3", "simulation.revolutions=3", "beam.damping_ratio=0.02"});
   ASSERT_EQ(many.revolutions.size(), 3u);
-  EXPECT_NEAR(sum_normal(many.force_bins), many.revolutions.back().normal_impulse_n_s,
-              1e-12 * many.revolutions.back().normal_impulse_n_s);
+  EXPECT_NEAR(sum_normal(many.force_bins), many.revolutions.back().ledger[LedgerTerm::normal_impulse],
+              1e-12 * many.revolutions.back().ledger[LedgerTerm::normal_impulse]);
 }
 
 TEST(History, TheRigidTurnIsDrawnRowByRow) {

@@ -125,7 +125,7 @@ TEST(IntegratingFactor, PassesEqualThoseWithoutItAtATightTolerance) {
     EXPECT_EQ(a.summary.contact_episodes, b.summary.contact_episodes) << name;
     EXPECT_NEAR(a.summary.last_separation_deg, b.summary.last_separation_deg,
                 1e-8 * std::abs(b.summary.last_separation_deg)) << name;
-    EXPECT_NEAR(a.summary.normal_impulse_n_s, b.summary.normal_impulse_n_s, 1e-8 * b.summary.normal_impulse_n_s)
+    EXPECT_NEAR(a.summary.ledger[LedgerTerm::normal_impulse], b.summary.ledger[LedgerTerm::normal_impulse], 1e-8 * b.summary.ledger[LedgerTerm::normal_impulse])
         << name;
   }
 }
@@ -235,7 +235,7 @@ TEST(EndWhenClear, EndsEarlyWithTheSameContactAndSaysWhere) {
     EXPECT_EQ(a.summary.impacts, b.summary.impacts) << name;
     EXPECT_EQ(a.summary.contact_episodes, b.summary.contact_episodes) << name;
     EXPECT_EQ(a.summary.last_separation_deg, b.summary.last_separation_deg) << name;
-    EXPECT_EQ(a.summary.normal_impulse_n_s, b.summary.normal_impulse_n_s) << name;
+    EXPECT_EQ(a.summary.ledger[LedgerTerm::normal_impulse], b.summary.ledger[LedgerTerm::normal_impulse]) << name;
     EXPECT_EQ(a.summary.peak_normal_force_n, b.summary.peak_normal_force_n) << name;
     ASSERT_TRUE(std::isfinite(a.summary.ended_clear_deg)) << name;
     EXPECT_GT(a.summary.ended_clear_deg, a.summary.last_separation_deg) << name;

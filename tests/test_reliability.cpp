@@ -12,6 +12,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include "test_support.hpp"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -181,7 +183,7 @@ TEST(Reliability, NonFiniteStateIsDiagnosed) {
   ic.qd0[2] = std::numeric_limits<double>::quiet_NaN();
   PassOptions thesis, adaptive;
   thesis.scheme = Scheme::thesis;
-  for (const PassResult& r : {run_pass({model, plane, {}}, ic, thesis), run_pass({model, plane, {}}, ic, adaptive)}) {
+  for (const PassResult& r : {run_pass({model, plane, default_contact_law()}, ic, thesis), run_pass({model, plane, default_contact_law()}, ic, adaptive)}) {
     ASSERT_TRUE(r.failure.has_value()) << scheme_name(r.summary.scheme);
     EXPECT_TRUE(r.failure->kind == FailureKind::non_finite || r.failure->kind == FailureKind::step_underflow)
         << scheme_name(r.summary.scheme) << ": " << failure_name(r.failure->kind) << " " << r.failure->message;
@@ -220,7 +222,7 @@ TEST(Reliability, ProgressCountsFromTheFlexibleStart) {
   std::vector<PassProgress> seen;
   PassControl control;
   control.on_progress = [&](const PassProgress& pr) { seen.push_back(pr); };
-  const PassResult r = run_pass({model, plane, {}}, InitialConditions{}, opt, control);
+  const PassResult r = run_pass({model, plane, default_contact_law()}, InitialConditions{}, opt, control);
   ASSERT_FALSE(r.failure);
   ASSERT_FALSE(seen.empty());
   const PassProgress& first = seen.front();
@@ -238,7 +240,7 @@ TEST(Reliability, ProgressCountsFromTheFlexibleStart) {
   std::vector<PassProgress> searched;
   PassControl search_control;
   search_control.on_progress = [&](const PassProgress& pr) { searched.push_back(pr); };
-  const FirstImpactResult f = first_impact({model, plane, {}}, flexible, 90.0, 1e-6, search_control);
+  const FirstImpactResult f = first_impact({model, plane, default_contact_law()}, flexible, 90.0, 1e-6, search_control);
   ASSERT_TRUE(f.found);
   ASSERT_FALSE(searched.empty());
   EXPECT_DOUBLE_EQ(searched.front().start_deg, -90.0);
@@ -257,7 +259,7 @@ TEST(Reliability, AStepThatCannotAdvanceIsAnUnderflow) {
   PassOptions opt;
   opt.scheme = Scheme::thesis;
   opt.free_step_s = 1e-300;
-  const PassResult r = run_pass({model, plane, {}}, InitialConditions{}, opt);
+  const PassResult r = run_pass({model, plane, default_contact_law()}, InitialConditions{}, opt);
   ASSERT_TRUE(r.failure);
   EXPECT_EQ(r.failure->kind, FailureKind::step_underflow);
   EXPECT_NE(r.failure->message.find("would need over 1e12 steps"), std::string::npos) << r.failure->message;
@@ -266,7 +268,7 @@ TEST(Reliability, AStepThatCannotAdvanceIsAnUnderflow) {
   flexible.q0 = Eigen::VectorXd::Zero(5);
   flexible.qd0 = Eigen::VectorXd::Zero(5);
   flexible.qd0[0] = 0.1;
-  const PassResult f = run_pass({model, plane, {}}, flexible, [&] {
+  const PassResult f = run_pass({model, plane, default_contact_law()}, flexible, [&] {
     PassOptions o = opt;
     return o;
   }());
@@ -510,7 +512,7 @@ TEST(Reliability, ARigidApproachOfNearSurfaceRowsHonoursAStop) {
   PassControl control;
   control.stop = &stop;
   control.sink = &sink;
-  const PassResult r = run_pass({model, plane, {}}, InitialConditions{}, opt, control);
+  const PassResult r = run_pass({model, plane, default_contact_law()}, InitialConditions{}, opt, control);
   ASSERT_TRUE(r.failure);
   EXPECT_EQ(r.failure->kind, FailureKind::interrupted);
   EXPECT_LT(sink.rows, 10000);
@@ -522,7 +524,7 @@ TEST(Reliability, OneHistoryRowPerState) {
   BeamParameters p;
   const ForeshorteningBeam model = make_beam(p);
   const Plane plane = plane_at_depth(model, 0.02);
-  const PassResult r = run_pass({model, plane, {}}, InitialConditions{}, PassOptions{});
+  const PassResult r = run_pass({model, plane, default_contact_law()}, InitialConditions{}, PassOptions{});
   ASSERT_FALSE(r.failure);
   ASSERT_GT(r.summary.impacts, 0);
   int duplicates = 0, pairs = 0;

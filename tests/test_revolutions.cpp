@@ -49,15 +49,15 @@ TEST(Revolutions, LedgerClosesEveryRevolution) {
     double hub = 0;
     for (const RevolutionRecord& rev : r.revolutions) {
       EXPECT_TRUE(rev.complete);
-      EXPECT_LE(std::abs(rev.ledger_residual_j), 1e-8 * std::abs(rev.hub_work_j)) << "revolution " << rev.revolution;
-      EXPECT_NEAR(rev.mean_hub_power_w, rev.hub_work_j / (rev.t_end - rev.t_start), 1e-15);
-      hub += rev.hub_work_j;
+      EXPECT_LE(std::abs(rev.ledger.residual()), 1e-8 * std::abs(rev.ledger[LedgerTerm::hub_work])) << "revolution " << rev.revolution;
+      EXPECT_NEAR(rev.mean_hub_power_w, rev.ledger[LedgerTerm::hub_work] / (rev.t_end - rev.t_start), 1e-15);
+      hub += rev.ledger[LedgerTerm::hub_work];
     }
     // The revolutions add up to the run.
-    EXPECT_NEAR(hub, r.summary.hub_work_j, 1e-9 * std::abs(r.summary.hub_work_j));
+    EXPECT_NEAR(hub, r.summary.ledger[LedgerTerm::hub_work], 1e-9 * std::abs(r.summary.ledger[LedgerTerm::hub_work]));
     EXPECT_NEAR(r.summary.mean_hub_torque_n_m, r.revolutions.back().mean_hub_torque_n_m, 0.0);
     if (&sets == &cases.front())  // damped, rubbing: the hub drives the filament in every revolution
-      for (const RevolutionRecord& rev : r.revolutions) EXPECT_GT(rev.hub_work_j, 0.0);
+      for (const RevolutionRecord& rev : r.revolutions) EXPECT_GT(rev.ledger[LedgerTerm::hub_work], 0.0);
   }
 }
 
@@ -77,7 +77,7 @@ TEST(Revolutions, LedgerClosesAfterAReturnInsideTheDetectorBand) {
                r.events[k].t - r.events[k - 1].t < 2e-5 && r.events[k].vx_before < 2e-3;
   EXPECT_TRUE(returns) << "no slow return within 20 µs of a lift-off: the case no longer exercises the band";
   for (const RevolutionRecord& rev : r.revolutions)
-    EXPECT_LE(std::abs(rev.ledger_residual_j), 1e-8 * std::abs(rev.hub_work_j)) << "revolution " << rev.revolution;
+    EXPECT_LE(std::abs(rev.ledger.residual()), 1e-8 * std::abs(rev.ledger[LedgerTerm::hub_work])) << "revolution " << rev.revolution;
 }
 
 // Revolution 3 of a run equals one revolution run from revolution 2's end state (a flexible start at

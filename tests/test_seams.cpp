@@ -9,6 +9,8 @@
 #include "rotbeam/plane.hpp"
 
 #include <cmath>
+#include "test_support.hpp"
+
 #include <gtest/gtest.h>
 #include <set>
 #include <thread>
@@ -123,10 +125,10 @@ TEST(ContactLoad, GeneralisedForceIsTheVirtualWorkOfTheForceOnTheTip) {
       const ContactLoad l = contact_load(friction, tip, v, -0.7, slip, force);
       const Eigen::VectorXd virtual_work = l.force_x * tip.grad_x + l.force_y * tip.grad_y;
       EXPECT_LT((force - virtual_work).norm(), 1e-14 * force.norm());
-      EXPECT_NEAR(l.power, v.dot(force), 1e-15 * std::abs(l.power) + 1e-18);
+      EXPECT_NEAR(l.rate[LedgerTerm::contact_work], v.dot(force), 1e-15 * std::abs(l.rate[LedgerTerm::contact_work]) + 1e-18);
       EXPECT_NEAR(std::abs(l.friction_force), friction.mu * (thesis ? tip.grad_gap.norm() : 1.0) * 0.7, 1e-15);
       EXPECT_LT(l.friction_force * slip, 0.0) << "friction opposes the slip";
-      EXPECT_NEAR(l.slip_power, l.friction_force * tip.slip_speed, 1e-18);
+      EXPECT_NEAR(l.rate[LedgerTerm::friction_work], l.friction_force * tip.slip_speed, 1e-18);
     }
   const ContactLoad none = contact_load(FrictionModel{}, tip, v, 0.0, 1.0, force);
   EXPECT_EQ(none.normal_force, 0.0);
@@ -191,7 +193,7 @@ PassResult pass_of(int n, double rpm, double mu, Scheme scheme, double plastic_b
   PassOptions opt;
   opt.scheme = scheme;
   opt.output_interval_s = 1e30;
-  return run_pass({model, plane, {FrictionModel{mu, false}, law}}, InitialConditions{}, opt);
+  return run_pass({model, plane, *test::rigid_law({mu, false}, law)}, InitialConditions{}, opt);
 }
 }  // namespace
 
@@ -235,7 +237,7 @@ TEST(Streams, ASinkReceivesExactlyWhatAnInMemoryPassKeeps) {
   for (Scheme scheme : {Scheme::adaptive, Scheme::thesis}) {
     PassOptions opt;
     opt.scheme = scheme;
-    const System system{model, plane, {}};
+    const System system{model, plane, default_contact_law()};
     const PassResult memory = run_pass(system, InitialConditions{}, opt);
     CountingSink sink;
     const PassResult streamed = run_pass(system, InitialConditions{}, opt, {&sink, nullptr});
@@ -250,7 +252,7 @@ TEST(Streams, ASinkReceivesExactlyWhatAnInMemoryPassKeeps) {
     }
     for (std::size_t i = 0; i < sink.events.size(); ++i) EXPECT_EQ(sink.events[i].kind, memory.events[i].kind);
     EXPECT_EQ(streamed.summary.impacts, memory.summary.impacts);
-    EXPECT_EQ(streamed.summary.normal_impulse_n_s, memory.summary.normal_impulse_n_s);
+    EXPECT_EQ(streamed.summary.ledger[LedgerTerm::normal_impulse], memory.summary.ledger[LedgerTerm::normal_impulse]);
   }
 }
 
@@ -260,7 +262,7 @@ TEST(Streams, EachPassHasItsOwnStopToken) {
   p.modes = 8;
   const ForeshorteningBeam model = make_beam(p);
   const Plane plane = plane_at_depth(model, 0.02);
-  const System system{model, plane, {}};
+  const System system{model, plane, default_contact_law()};
   PassOptions opt;
   opt.output_interval_s = 1e30;
   StopToken stopped, running;

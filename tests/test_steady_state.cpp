@@ -56,7 +56,7 @@ TEST(SteadyState, ShootingAgreesWithBruteForce) {
     // The files of a shooting run hold the orbit: its revolution returns the energy it started with
     // (Δenergy → 0 in steady state) while the hub keeps doing work.
     ASSERT_EQ(s.summary.revolutions, ss.period_revolutions);
-    EXPECT_LE(std::abs(s.summary.energy_change_j), 1e-6 * std::abs(s.summary.hub_work_j));
+    EXPECT_LE(std::abs(s.summary.ledger.energy_change_j), 1e-6 * std::abs(s.summary.ledger[LedgerTerm::hub_work]));
     EXPECT_NEAR(s.summary.mean_hub_power_w, b.summary.mean_hub_power_w, 1e-6 * std::abs(b.summary.mean_hub_power_w));
     // Both report the same multipliers (the FD Jacobian is good to ≈ 1e-4 at this rtol).
     ASSERT_FALSE(sb.multipliers.empty());

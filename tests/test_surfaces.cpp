@@ -235,7 +235,7 @@ TEST(Surfaces, ACylinderOfAMillionMetresReproducesThePlanesPass) {
     EXPECT_EQ(a.summary.contact_episodes, b.summary.contact_episodes);
     EXPECT_NEAR(a.summary.first_impact_deg, b.summary.first_impact_deg, 1e-6);
     EXPECT_NEAR(a.summary.last_separation_deg, b.summary.last_separation_deg, 1e-6);
-    EXPECT_NEAR(a.summary.normal_impulse_n_s, b.summary.normal_impulse_n_s, 1e-6 * a.summary.normal_impulse_n_s);
+    EXPECT_NEAR(a.summary.ledger[LedgerTerm::normal_impulse], b.summary.ledger[LedgerTerm::normal_impulse], 1e-6 * a.summary.ledger[LedgerTerm::normal_impulse]);
   }
 }
 
@@ -424,13 +424,13 @@ TEST(SurfaceWork, ASpinningWorkpiecesFrictionWorkClosesTheLedger) {
     const PassSummary& s = r.summary;
     ASSERT_TRUE(s.last_revolution);
     const RevolutionRecord& rev = *s.last_revolution;
-    EXPECT_GT(std::abs(rev.surface_work_j), 1e-3 * std::abs(rev.hub_work_j)) << rpm;
-    const double scale = std::max({std::abs(rev.hub_work_j), std::abs(rev.friction_work_j), std::abs(rev.surface_work_j)});
-    EXPECT_LT(std::abs(rev.ledger_residual_j), 1e-7 * scale) << rpm;
-    EXPECT_GT(std::abs(rev.ledger_residual_j - rev.surface_work_j), 1e-3 * scale) << "the surface's work is the ledger's";
-    EXPECT_LE(s.friction_work_j, 0.0) << "friction dissipates: the slip is relative to the surface";
-    EXPECT_LE(s.impact_loss_j, 1e-15) << rpm << " " << impact << ": impacts dissipate";
-    for (const RevolutionRecord& each : r.revolutions) EXPECT_LE(each.impact_loss_j, 1e-15);
+    EXPECT_GT(std::abs(rev.ledger[LedgerTerm::surface_work]), 1e-3 * std::abs(rev.ledger[LedgerTerm::hub_work])) << rpm;
+    const double scale = std::max({std::abs(rev.ledger[LedgerTerm::hub_work]), std::abs(rev.ledger[LedgerTerm::friction_work]), std::abs(rev.ledger[LedgerTerm::surface_work])});
+    EXPECT_LT(std::abs(rev.ledger.residual()), 1e-7 * scale) << rpm;
+    EXPECT_GT(std::abs(rev.ledger.residual() - rev.ledger[LedgerTerm::surface_work]), 1e-3 * scale) << "the surface's work is the ledger's";
+    EXPECT_LE(s.ledger[LedgerTerm::friction_work], 0.0) << "friction dissipates: the slip is relative to the surface";
+    EXPECT_LE(s.ledger[LedgerTerm::impact_loss], 1e-15) << rpm << " " << impact << ": impacts dissipate";
+    for (const RevolutionRecord& each : r.revolutions) EXPECT_LE(each.ledger[LedgerTerm::impact_loss], 1e-15);
   }
 }
 
@@ -451,12 +451,12 @@ TEST(Casing, ATwoLobeCasingRunsTwoHundredRevolutionsWithEveryLedgerClosed) {
   for (const RevolutionRecord& rev : r.revolutions) {
     ASSERT_TRUE(rev.complete);
     touching += rev.impacts > 0 || rev.contact_time_s > 0;
-    const double scale = std::max({std::abs(rev.hub_work_j), std::abs(rev.friction_work_j), std::abs(rev.damping_work_j),
-                                   std::abs(rev.impact_loss_j), std::abs(rev.energy_change_j)});
-    EXPECT_LT(std::abs(rev.ledger_residual_j), 1e-7 * scale) << "revolution " << rev.revolution;
+    const double scale = std::max({std::abs(rev.ledger[LedgerTerm::hub_work]), std::abs(rev.ledger[LedgerTerm::friction_work]), std::abs(rev.ledger[LedgerTerm::damping_work]),
+                                   std::abs(rev.ledger[LedgerTerm::impact_loss]), std::abs(rev.ledger.energy_change_j)});
+    EXPECT_LT(std::abs(rev.ledger.residual()), 1e-7 * scale) << "revolution " << rev.revolution;
   }
   EXPECT_GT(touching, 150);
-  EXPECT_LT(r.summary.friction_work_j, 0.0);
+  EXPECT_LT(r.summary.ledger[LedgerTerm::friction_work], 0.0);
   ASSERT_TRUE(r.summary.last_revolution);
   EXPECT_EQ(r.summary.last_revolution->revolution, 200);
 }

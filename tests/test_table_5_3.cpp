@@ -10,6 +10,8 @@
 #include "rotbeam/plane.hpp"
 
 #include <cmath>
+#include "test_support.hpp"
+
 #include <gtest/gtest.h>
 
 using namespace rotbeam;
@@ -40,7 +42,7 @@ FirstImpactResult run(double rpm, double qd1, int modes = 5) {
   ic.qd0 = Eigen::VectorXd::Zero(modes);
   ic.qd0[0] = qd1;
   const Plane plane = plane_at_depth(model, 0.02);
-  return first_impact({model, plane, {FrictionModel{}, ImpactLaw{}}}, ic, 90.0, 1e-6);
+  return first_impact({model, plane, *test::rigid_law({}, {})}, ic, 90.0, 1e-6);
 }
 
 }  // namespace

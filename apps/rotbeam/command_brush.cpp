@@ -46,10 +46,10 @@ void print_summary(const Config& config, const BrushResult& r, const std::string
               << " mm along the surface\n";
   else
     std::cout << "  contact zone          none: no filament touched the surface\n";
-  std::cout << "  ledger per revolution hub " << s.hub_work_j * 1e3 << " mJ, friction " << s.friction_work_j * 1e3
-            << (s.surface_work_j != 0.0 ? " mJ, surface " + number_text(s.surface_work_j * 1e3) : std::string())
-            << " mJ, damping " << s.damping_work_j * 1e3 << " mJ, impacts " << s.impact_loss_j * 1e3
-            << " mJ, residual " << s.ledger_residual_j << " J\n";
+  std::cout << "  ledger per revolution hub " << s.ledger[LedgerTerm::hub_work] * 1e3 << " mJ, friction " << s.ledger[LedgerTerm::friction_work] * 1e3
+            << (s.ledger[LedgerTerm::surface_work] != 0.0 ? " mJ, surface " + number_text(s.ledger[LedgerTerm::surface_work] * 1e3) : std::string())
+            << " mJ, damping " << s.ledger[LedgerTerm::damping_work] * 1e3 << " mJ, impacts " << s.ledger[LedgerTerm::impact_loss] * 1e3
+            << " mJ, residual " << s.ledger_residual_max_j << " J\n";
   std::cout << "  dimensionless         p = " << s.depth_ratio << ", Ω/ω₁ = " << s.speed_ratio
             << ", F/(3EI·pL/L³) per filament = " << s.force_ratio << "\n";
   std::cout << "  wall time             " << fixed(s.wall_time_s, 2) << " s\n";

@@ -116,11 +116,11 @@ int run_converge(const ConvergeOptions& o) {
     std::printf("%-32s %s %s %5d %5d %s %s %s %s %s %s %s %s%s\n", r.label.c_str(),
                 cell(s.last_separation_deg, 9, "%*.4f").c_str(), cell(dsep, 9, "%*.1e").c_str(), s.impacts,
                 s.contact_episodes, cell(s.contact_time_s * 1e3, 10, "%*.5f").c_str(),
-                cell(s.normal_impulse_n_s * 1e3, 11, "%*.6f").c_str(),
-                cell(rel(s.normal_impulse_n_s, ref.normal_impulse_n_s), 9, "%*.1e").c_str(),
+                cell(s.ledger[LedgerTerm::normal_impulse] * 1e3, 11, "%*.6f").c_str(),
+                cell(rel(s.ledger[LedgerTerm::normal_impulse], ref.ledger[LedgerTerm::normal_impulse]), 9, "%*.1e").c_str(),
                 cell(s.peak_normal_force_n, 11, "%*.5f").c_str(),
                 cell(rel(s.peak_normal_force_n, ref.peak_normal_force_n), 10, "%*.1e").c_str(),
-                cell(s.friction_work_j * 1e3, 10, "%*.5f").c_str(),
+                cell(s.ledger[LedgerTerm::friction_work] * 1e3, 10, "%*.5f").c_str(),
                 cell(rel(s.contact_time_s, ref.contact_time_s), 9, "%*.1e").c_str(),
                 cell(s.wall_time_s, 8, "%*.3f").c_str(), r.failure.empty() ? "" : ("  stopped: " + r.failure).c_str());
   }

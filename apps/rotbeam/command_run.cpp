@@ -62,10 +62,10 @@ void print_summary(const Config& config, const PassResult& r, const std::string&
               << fixed(s.binned_force.peak_tangential_force_n, 4) << " N tangential (momentum per "
               << number_text(s.binned_force.bin_deg) << "° bin of hub angle, impacts included"
               << (config.simulation.revolutions > 0 ? ", last complete revolution" : "") << "; force_bins.csv)\n";
-  std::cout << "  normal impulse        " << s.normal_impulse_n_s * 1e3 << " mN s\n";
-  std::cout << "  friction work         " << s.friction_work_j * 1e3 << " mJ\n";
-  if (s.surface_work_j != 0.0)
-    std::cout << "  surface work          " << s.surface_work_j * 1e3 << " mJ (the spinning workpiece's, through friction)\n";
+  std::cout << "  normal impulse        " << s.ledger[LedgerTerm::normal_impulse] * 1e3 << " mN s\n";
+  std::cout << "  friction work         " << s.ledger[LedgerTerm::friction_work] * 1e3 << " mJ\n";
+  if (s.ledger[LedgerTerm::surface_work] != 0.0)
+    std::cout << "  surface work          " << s.ledger[LedgerTerm::surface_work] * 1e3 << " mJ (the spinning workpiece's, through friction)\n";
   std::cout << "  max |y_t|/L           " << fixed(s.max_tip_deflection_ratio, 4) << "\n";
   // "edge" is said by its warning below; "outside" here, in words that cannot be missed.
   if (s.validity == Validity::outside)

@@ -31,7 +31,7 @@ struct Outcome {
 
 nlohmann::json outcome_json(const Outcome& r) {
   const PassSummary& s = r.summary;
-  return {{"last_separation_deg", s.last_separation_deg}, {"normal_impulse_n_s", s.normal_impulse_n_s},
+  return {{"last_separation_deg", s.last_separation_deg}, {"normal_impulse_n_s", s.ledger[LedgerTerm::normal_impulse]},
           {"peak_normal_force_n", s.peak_normal_force_n},  {"contact_time_s", s.contact_time_s},
           {"max_tip_deflection_ratio", s.max_tip_deflection_ratio},
           {"impacts", s.impacts},                         {"contact_episodes", s.contact_episodes},
@@ -84,7 +84,7 @@ int run_theories(const TheoriesOptions& o) {
     nlohmann::json j;
     for (std::size_t k = 0; k < kTheories.size(); ++k) j[beam_theory_name(kTheories[k])] = outcome_json(out[k]);
     j["difference"] = {{"last_separation_deg", b.last_separation_deg - a.last_separation_deg},
-                       {"normal_impulse_relative", rel(b.normal_impulse_n_s, a.normal_impulse_n_s)},
+                       {"normal_impulse_relative", rel(b.ledger[LedgerTerm::normal_impulse], a.ledger[LedgerTerm::normal_impulse])},
                        {"peak_normal_force_relative", rel(b.peak_normal_force_n, a.peak_normal_force_n)},
                        {"contact_time_relative", rel(b.contact_time_s, a.contact_time_s)},
                        {"max_tip_deflection_ratio", b.max_tip_deflection_ratio - a.max_tip_deflection_ratio}};
@@ -98,13 +98,13 @@ int run_theories(const TheoriesOptions& o) {
   for (std::size_t k = 0; k < kTheories.size(); ++k) {
     const PassSummary& s = out[k].summary;
     std::printf("%-16s %s %s %s %s %s %8d %8d %8.3f%s\n", beam_theory_name(kTheories[k]),
-                cell(s.last_separation_deg, "%12.4f").c_str(), cell(s.normal_impulse_n_s * 1e3, "%12.6f").c_str(),
+                cell(s.last_separation_deg, "%12.4f").c_str(), cell(s.ledger[LedgerTerm::normal_impulse] * 1e3, "%12.6f").c_str(),
                 cell(s.peak_normal_force_n, "%12.5f").c_str(), cell(s.contact_time_s * 1e3, "%12.5f").c_str(),
                 cell(s.max_tip_deflection_ratio, "%12.5f").c_str(), s.impacts, s.contact_episodes, s.wall_time_s,
                 out[k].failure.empty() ? "" : ("  stopped: " + out[k].failure).c_str());
   }
   std::printf("%-16s %s %s %s %s %s\n", "elastica − fore", cell(b.last_separation_deg - a.last_separation_deg, "%+12.4f").c_str(),
-              cell(100 * rel(b.normal_impulse_n_s, a.normal_impulse_n_s), "%+11.2f%%").c_str(),
+              cell(100 * rel(b.ledger[LedgerTerm::normal_impulse], a.ledger[LedgerTerm::normal_impulse]), "%+11.2f%%").c_str(),
               cell(100 * rel(b.peak_normal_force_n, a.peak_normal_force_n), "%+11.2f%%").c_str(),
               cell(100 * rel(b.contact_time_s, a.contact_time_s), "%+11.2f%%").c_str(),
               cell(b.max_tip_deflection_ratio - a.max_tip_deflection_ratio, "%+12.5f").c_str());

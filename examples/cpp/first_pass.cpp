@@ -2,6 +2,7 @@
 // adaptive scheme, the linear modes, and the same pass from a configuration with overrides.
 //   build/examples/cpp/first_pass
 #include "rotbeam/case.hpp"
+#include "rotbeam/contact_laws.hpp"
 #include "rotbeam/modal_analysis.hpp"
 #include "rotbeam/plane.hpp"
 
@@ -14,7 +15,10 @@ int main() {
   BeamParameters p;  // thesis Table 5-1, 550 rpm, 5 modes
   const ForeshorteningBeam beam = make_beam(p);
   const Plane plane = plane_at_depth(beam, 0.02);  // 2 % depth
-  const System system{beam, plane, ContactLaw{FrictionModel{0.4, false}, ImpactLaw{}}};
+  ContactSettings contact;  // the rigid law, μ = 0.4, Yigit's restitution
+  contact.friction.mu = 0.4;
+  const std::shared_ptr<const ContactLaw> law = make_contact_law(contact, p.youngs_modulus_pa, p.diameter_m);
+  const System system{beam, plane, *law};
 
   // 2. The first impact of a rigid start (thesis Table 5-3, first row).
   InitialConditions rigid;  // q = q̇ = 0 at the geometric contact angle

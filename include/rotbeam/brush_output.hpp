@@ -4,7 +4,8 @@
 // the sizes of the other two, so that a folder holds a summary only beside the complete files.
 #pragma once
 
-#include "rotbeam/brush.hpp"
+#include "rotbeam/brush_result.hpp"
+#include "rotbeam/config.hpp"
 
 #include <filesystem>
 #include <memory>

@@ -14,11 +14,11 @@ namespace rotbeam {
 struct Case {
   std::shared_ptr<const BeamModel> beam;
   std::shared_ptr<const Surface> surface;
-  ContactLaw law;
+  std::shared_ptr<const ContactLaw> law;
   InitialConditions initial;
   PassOptions options;
   /// The mechanical system (references into this case: keep the case alive while it is used).
-  System system() const { return {*beam, *surface, law}; }
+  System system() const { return {*beam, *surface, *law}; }
 };
 
 /// Builds the case a (validated) configuration describes. Throws ConfigError naming the key when

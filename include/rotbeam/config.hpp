@@ -42,7 +42,7 @@ struct InitialSettings {
 struct Config {
   BeamParameters beam;         // [beam], [hub]
   SurfaceParameters surface;   // surface.depth_fraction
-  ContactLaw contact;          // surface.friction, [impact], compat.thesis_forces, compat.restitution_speed
+  ContactSettings contact;     // surface.friction, [impact], [contact], compat.thesis_forces, compat.restitution_speed
   InitialSettings initial;     // [initial]
   PassOptions simulation;      // [simulation], output.interval_s, compat.thesis_dcdt
   std::optional<BrushSettings> brush;  // [brush]: present when the case is a brush (docs/brush.md)

@@ -1,11 +1,20 @@
-// The contact-law seam (SPEC §4, §5): what the surface pushes on the tip with, as forces on the
-// tip and as the generalised force on the modal coordinates, computed in one place
-// (contact_load) for every scheme and output. Two laws: the thesis's rigid unilateral constraint
-// whose multiplier λ is the normal force (rigid_contact.hpp), Coulomb friction, and
-// momentum-balance impacts with a restitution law (impact.hpp); and a compliant law (SPEC §11,
-// "Compliant contact"): Hertz sphere-on-flat with Hunt–Crossley damping, whose λ = −F_n comes from
-// the penetration δ = C > 0 and its rate δ̇ = Ċ (hertz_normal_force) and goes through the same
-// contact_load, with a regularised Coulomb friction (regularized_slip).
+// The contact-law seam (SPEC §4, §5, §11): what the surface pushes on the tip with, and what happens
+// when the tip touches it. A contact law is an object (ContactLaw) made once per case by
+// make_contact_law (contact_laws.hpp) from the case's ContactSettings, immutable and shared by any
+// number of passes and threads. It
+//   - names the phases its contacts pass through, how a stepper integrates each (a constraint
+//     projected at every step, or a smooth force) and the root functions each needs;
+//   - computes the contact's load at a state: the forces on the tip, the generalised force Q on the
+//     modal coordinates and the rates of the ledger's terms (ledger.hpp), its dissipation included;
+//   - decides the transitions (a touch, a root of its phase) through PhaseControl, which the pass
+//     driver implements: impacts, contact starts and ends, lift-offs, failures;
+//   - reports the energy it stores (a compliant contact's elastic energy).
+// The driver, the steppers and the recorder never ask which law it is.
+//
+// Two laws today: the thesis's rigid unilateral constraint whose multiplier λ is the normal force
+// (rigid_contact.hpp), Coulomb friction and momentum-balance impacts (impact.hpp); and a compliant
+// law: Hertz sphere-on-flat with Hunt–Crossley damping, λ = −F_n from the penetration δ = C > 0 and
+// its rate δ̇ = Ċ, with a regularised Coulomb friction. Both compute their load through contact_load.
 //
 // Force conventions: because ∂C/∂R_tip is the unit normal n, λ ≤ 0 is the physical normal force:
 // F_n = −λ [N]; friction on the tip acts along the tangent t, F_t = −μ F_n s_t with s_t = sign(V_t).
@@ -15,8 +24,13 @@
 
 #include "rotbeam/impact.hpp"
 #include "rotbeam/kinematics.hpp"
+#include "rotbeam/ledger.hpp"
+#include "rotbeam/outcome.hpp"
+#include "rotbeam/state.hpp"
 
 #include <cmath>
+#include <span>
+#include <string>
 
 namespace rotbeam {
 
@@ -36,16 +50,19 @@ struct HertzContact {
   double wire_poisson = 0.3;                  // ν_w (beam.poisson)
   double friction_regularization_m_s = 1e-3;  // v_ε of regularized_slip (contact.friction_regularization_m_s)
   double stiffness_factor = 1.0;              // multiplies E* (contact.stiffness_factor): the rigid limit's studies
-  double stiffness = 0.0;                     // k [N/m^{3/2}], set by hertz_stiffness from the wire (build_case)
 };
 
-/// The contact law of a case: friction, the impact law, and the normal law (rigid or Hertz).
-struct ContactLaw {
+/// What a case says of its contact: friction, the impact law, and the normal law (rigid or Hertz) with
+/// its parameters. make_contact_law (contact_laws.hpp) makes the law object from it.
+struct ContactSettings {
   FrictionModel friction;
   ImpactLaw impact;
   ContactModel model = ContactModel::rigid;  // contact.model
   HertzContact hertz;                        // used when model == hertz
 };
+
+/// "rigid", "hertz": contact.model's values.
+const char* contact_model_name(ContactModel m);
 
 /// k = (4/3) E* √R × stiffness_factor [N/m^{3/2}] for a wire of modulus `wire_youngs_pa` [Pa] and diameter
 /// `wire_diameter_m` [m] (R = hertz.tip_radius_m, or D/2 when that is 0). SPEC §11.
@@ -69,19 +86,19 @@ inline constexpr double kMinCompliantRestitution = 0.05;
 /// without the plastic floor, and at least kMinCompliantRestitution), c = hunt_crossley_product(e) /
 /// max(v0, impact.plastic_below_m_s, 1e-3 m/s). The speed floor bounds c for grazing touches (their
 /// restitution is then above e). SPEC §11.
-double hertz_damping(const ContactLaw& law, double v0, double full_speed);
+double hertz_damping(const ContactSettings& law, double v0, double full_speed);
 
-/// The Hertz normal force F_n = max(0, k δ^{3/2}(1 + c δ̇)) [N] at penetration δ [m] (0 for δ ≤ 0)
-/// and its rate δ̇ [m/s]: the force never pulls (clipped at 0 where the damping term would make it
-/// negative, on a fast exit).
-double hertz_normal_force(const HertzContact& hertz, double damping, double delta, double delta_rate);
+/// The Hertz normal force F_n = max(0, k δ^{3/2}(1 + c δ̇)) [N] for the stiffness k [N/m^{3/2}] at
+/// penetration δ [m] (0 for δ ≤ 0) and its rate δ̇ [m/s]: the force never pulls (clipped at 0 where the
+/// damping term would make it negative, on a fast exit).
+double hertz_normal_force(double stiffness, double damping, double delta, double delta_rate);
 
-/// The elastic energy stored in the Hertz contact, (2/5) k δ^{5/2} [J] (0 for δ ≤ 0).
-double hertz_elastic_energy(const HertzContact& hertz, double delta);
+/// The elastic energy stored in the Hertz contact of stiffness k, (2/5) k δ^{5/2} [J] (0 for δ ≤ 0).
+double hertz_elastic_energy(double stiffness, double delta);
 
 /// The rate at which the compliant contact dissipates energy [W] (≤ 0, signed as energy given to
 /// the filament): −(F_n − k δ^{3/2}) δ̇, i.e. −k c δ^{3/2} δ̇² unclipped and k δ^{3/2} δ̇ (δ̇ < 0) clipped.
-double hertz_dissipation_rate(const HertzContact& hertz, double normal_force, double delta, double delta_rate);
+double hertz_dissipation_rate(double stiffness, double normal_force, double delta, double delta_rate);
 
 /// The regularised slip direction s = V_t / √(V_t² + v_ε²) ∈ (−1, 1) of the compliant law's Coulomb
 /// friction F_t = −μ F_n s: Coulomb's law to a relative 1/2 (v_ε/V_t)² when sliding, a steep viscous
@@ -96,11 +113,12 @@ struct ContactLoad {
   double normal_force = 0;    // reported F_n [N]
   double friction_force = 0;  // F_t on the tip along the tangent [N]
   double force_x = 0, force_y = 0;  // the surface's force on the tip, global frame [N]
-  double moment = 0;          // its moment about the hub axis, X_t F_Y − Y_t F_X [N m]
-  double power = 0;           // q̇ᵀQ_contact [W], the rate of change of the Jacobi integral
-  double slip_power = 0;      // F_t V_t [W] (≤ 0)
-  double surface_power = 0;   // F_t (V_s·t) [W]: a moving surface's power on the tip through friction (0 at rest)
   double slip = 0;            // slip direction s_t used
+  // The rates of the ledger's terms (ledger.hpp) per second: contact_work q̇ᵀQ [W] (the rate of change
+  // of the Jacobi integral), friction_work F_t V_t [W] (≤ 0), surface_work F_t (V_s·t) [W] (a moving
+  // surface's power through friction), normal_impulse F_n [N], tangential_impulse F_t [N],
+  // contact_moment X_t F_Y − Y_t F_X [N m], and a compliant contact's contact_dissipation [W].
+  LedgerValues rate;
 };
 
 /// μ_eff, the friction coefficient applied to |λ| (μ, or μ|∇C| under thesis_forces).
@@ -115,10 +133,136 @@ void friction_direction(const FrictionModel& friction, const TipKinematics& tip,
                         Eigen::Ref<Eigen::VectorXd> out);
 
 /// The contact load for multiplier λ and slip direction s_t at the state of `tip` (with velocity
-/// q̇): Q = λ∇C + F_t ∂V_t/∂q̇ into `generalized_force` (size n), and the forces, powers and the
-/// force on the tip. Allocates nothing. λ = 0 gives the zero load.
+/// q̇): Q = λ∇C + F_t ∂V_t/∂q̇ into `generalized_force` (size n), and the forces, the rates and the
+/// force on the tip. Allocates nothing. λ = 0 gives the zero load (with s_t kept).
 ContactLoad contact_load(const FrictionModel& friction, const TipKinematics& tip,
                          const Eigen::Ref<const Eigen::VectorXd>& qd, double lambda, double slip_direction,
                          Eigen::Ref<Eigen::VectorXd> generalized_force);
+
+// ---- the law as an object ------------------------------------------------------------------------
+
+/// How a stepper integrates a contact phase.
+enum class PhaseKind {
+  constraint,  // a constraint holds (C = 0): q and q̇ are projected onto it (mass-weighted) before and
+               // after every step, and every step starts the error control afresh
+  force,       // a smooth force of the state: ordinary error-controlled steps
+};
+
+/// A root function of a contact phase. Every root function is oriented so that its event is a
+/// crossing from below zero to zero or above; a step looks for it when its value at the step's start
+/// (sample_at_start for the first) is below zero.
+struct ContactRoot {
+  const char* name;          // in words, for messages ("λ = 0")
+  bool ends_contact;         // the phase ends there and the tip is free (a separation)
+  const char* end_detail;    // the contact_end event's detail where it ends the contact
+};
+
+/// What a law computes at a state of its contact phase.
+struct ContactEvaluation {
+  ContactLoad load;            // forces and the ledger's rates
+  bool admissible = true;      // false: no force satisfies the law here (Painlevé's paradox)
+  double a = 0, b = 0, c = 0;  // a rigid contact's a λ + b|λ| = c, for the message of a failure
+};
+
+/// The first root function's value and the reported normal force at a state: what a stepper samples
+/// on its dense output to find the phase's end and the step's largest force.
+struct ContactSample {
+  double root = 0;
+  double normal_force = 0;  // [N]
+};
+
+/// What the pass driver does for a law at a transition (a touch, a root of a contact phase): the
+/// law decides, the driver carries out and records.
+class PhaseControl {
+public:
+  virtual ~PhaseControl() = default;
+  virtual const System& system() const = 0;
+  /// The filament now (its phase and episode are the law's to set before enter_contact).
+  virtual FilamentState& state() = 0;
+  /// Scratch: a workspace of the beam model, the tip's kinematics, a vector of size n.
+  virtual BeamWorkspace& workspace() = 0;
+  virtual TipKinematics& tip() = 0;
+  virtual Eigen::VectorXd& scratch() = 0;
+  /// The stepper's choice at a contact start whose acceleration-level multiplier is positive: true,
+  /// the tip lifts off at once; false, its own contact step decides (the thesis's corrector).
+  virtual bool lifts_off_on_positive_multiplier() const = 0;
+  /// True (the pass then ends, with an `impacts` failure) when no further impact may happen.
+  virtual bool impacts_exhausted() = 0;
+  /// An impact happened at the current state: q̇ jumped from qd_before to state().qd.
+  virtual void impact(const Eigen::VectorXd& qd_before, const ImpactResult& result) = 0;
+  /// Free flight after an impact that bounces.
+  virtual void rebound() = 0;
+  /// The tip enters state().phase (a contact phase) with the episode the law set and the load at
+  /// its start; `first_touch`: a touch without an impact (a compliant contact), which the summary's
+  /// first touch angle counts.
+  virtual void enter_contact(const ContactLoad& load, const std::string& why, bool first_touch) = 0;
+  /// The tip leaves the surface at a touch (a lift_off event; free flight).
+  virtual void lift_off(const std::string& why) = 0;
+  /// A contact episode ends (a contact_end event; free flight).
+  virtual void end_contact(const std::string& why) = 0;
+  virtual void event(EventKind kind, const std::string& detail) = 0;
+  /// The pass stops on a numerical failure in `phase` at the current time.
+  virtual void fail(FailureKind kind, const std::string& message, Phase phase) = 0;
+};
+
+class ContactLaw {
+public:
+  explicit ContactLaw(const ContactSettings& settings) : settings_(settings) {}
+  virtual ~ContactLaw() = default;
+  ContactLaw(const ContactLaw&) = delete;
+  ContactLaw& operator=(const ContactLaw&) = delete;
+
+  const ContactSettings& settings() const { return settings_; }
+  const FrictionModel& friction() const { return settings_.friction; }
+  const ImpactLaw& impact_law() const { return settings_.impact; }
+  /// contact.model's value.
+  virtual const char* name() const = 0;
+  /// Whether the thesis's fixed-step scheme (simulation.scheme = "thesis") integrates this law.
+  virtual bool has_thesis_scheme() const = 0;
+
+  // ---- the dynamics of a contact phase (the steppers) -------------------------------------------
+  virtual PhaseKind kind(Phase phase) const = 0;
+  /// The phase's root functions; the first is sampled with the normal force (sample).
+  virtual std::span<const ContactRoot> roots(Phase phase) const = 0;
+  /// The load at (t, q, q̇) of `episode`, with Q into `generalized_force` (size n). Evaluates the beam's
+  /// dynamics (ws.mass, ws.mass_llt, ws.psi at q, q̇) and the tip's kinematics into `tip`, so that
+  /// q̈ = M⁻¹(Q − Ψ) follows. Allocates nothing.
+  virtual ContactEvaluation evaluate(const System& system, const ContactEpisode& episode, double t,
+                                     const Eigen::Ref<const Eigen::VectorXd>& q,
+                                     const Eigen::Ref<const Eigen::VectorXd>& qd, BeamWorkspace& ws, TipKinematics& tip,
+                                     Eigen::Ref<Eigen::VectorXd> generalized_force) const = 0;
+  /// The first root function and the normal force at (t, q, q̇), sampled inside a step (overwrites ws
+  /// and tip).
+  virtual ContactSample sample(const System& system, const ContactEpisode& episode, double t,
+                               const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qd,
+                               BeamWorkspace& ws, TipKinematics& tip) const = 0;
+  /// The same at a step's start, where the first root is looked for in the step when its value is
+  /// below zero (sample by default).
+  virtual ContactSample sample_at_start(const System& system, const ContactEpisode& episode, double t,
+                                        const Eigen::Ref<const Eigen::VectorXd>& q,
+                                        const Eigen::Ref<const Eigen::VectorXd>& qd, BeamWorkspace& ws,
+                                        TipKinematics& tip) const;
+  /// Root function k of `phase` at (t, q, q̇), as a root finder refines it (overwrites ws and tip).
+  virtual double root_value(Phase phase, int k, const System& system, const ContactEpisode& episode, double t,
+                            const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qd,
+                            BeamWorkspace& ws, TipKinematics& tip) const = 0;
+  /// The energy the contact stores at (t, q), part of the ledger's energy [J] (0 for a rigid contact).
+  virtual double stored_energy(const System& system, double t, const Eigen::Ref<const Eigen::VectorXd>& q) const;
+  /// The failure an inadmissible evaluation means, and its message.
+  virtual FailureKind failure_kind(const ContactEvaluation& e) const;
+  virtual std::string failure_message(const ContactEvaluation& e) const;
+
+  // ---- the transitions (the pass driver) --------------------------------------------------------
+  /// Free flight reached the surface (C = 0, or a rigid start's first contact).
+  virtual void touch(PhaseControl& control) const = 0;
+  /// Root k of the current contact phase was crossed (one that does not end the contact).
+  virtual void root(PhaseControl& control, int k) const;
+  /// Before every contact step of a scheme that locates no root but the contact's end
+  /// (StepperTraits::locates_contact_roots false); false when the pass stopped.
+  virtual bool before_step(PhaseControl& control) const;
+
+private:
+  ContactSettings settings_;
+};
 
 }  // namespace rotbeam

@@ -4,6 +4,7 @@
 // impact law of SPEC §5.
 #pragma once
 
+#include "rotbeam/impact.hpp"
 #include "rotbeam/pass.hpp"
 
 namespace rotbeam {
@@ -21,7 +22,7 @@ struct FirstImpactResult {
 };
 
 /// Runs to the first impact (up to `end_angle_deg`) with free-flight step `step_s` [s] and applies
-/// system.law.impact. Throws std::invalid_argument when the initial shape already touches; a numerical
+/// system.law.impact_law(). Throws std::invalid_argument when the initial shape already touches; a numerical
 /// breakdown, or a stop requested on control.stop (checked at every step), is returned in `failure`
 /// (found = false; kind `interrupted` for a stop). control.on_progress is called as for a pass
 /// (θ from θ0 toward the end angle); control.sink is not used (the search records no history).

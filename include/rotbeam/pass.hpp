@@ -3,10 +3,11 @@
 // driver over the configured scheme's stepper.
 #pragma once
 
-#include "rotbeam/force_bins.hpp"
+#include "rotbeam/force_record.hpp"
+#include "rotbeam/ledger.hpp"
 #include "rotbeam/outcome.hpp"
 #include "rotbeam/pass_options.hpp"
-#include "rotbeam/stepper.hpp"
+#include "rotbeam/state.hpp"
 #include "rotbeam/stop_token.hpp"
 
 #include <cmath>
@@ -47,10 +48,9 @@ struct ContactInterval {
   int revolution = 1;  // the revolution it began in (SPEC §11: revolution k spans [θ0 + 360°(k − 1), θ0 + 360°k))
 };
 
-/// One revolution of a run over many (SPEC §11, revolutions.csv). Works are signed as energy given
-/// to the filament; per revolution hub_work_j + friction_work_j + surface_work_j + damping_work_j + impact_loss_j +
-/// contact_dissipation_j = energy_change_j (ledger_residual_j is the difference). Angles are relative to the revolution,
-/// in (−180°, 180°], 0° where the undeformed filament points at the surface's deepest point.
+/// One revolution of a run over many (SPEC §11, revolutions.csv). Its ledger's energy terms sum to
+/// its energy change (ledger.hpp; the residual is the difference). Angles are relative to the
+/// revolution, in (−180°, 180°], 0° where the undeformed filament points at the surface's deepest point.
 struct RevolutionRecord {
   int revolution = 0;     // 1, 2, …
   bool complete = false;  // false for a revolution cut short by the end angle, a failure or a stop
@@ -59,20 +59,12 @@ struct RevolutionRecord {
   int contact_episodes = 0;             // episodes that ended in this revolution
   double first_impact_deg = NAN;        // NaN: no impact
   double last_separation_deg = NAN;     // the last impact or contact end; NaN: none
-  double normal_impulse_n_s = 0;
-  double friction_work_j = 0;
-  double surface_work_j = 0;            // a moving surface's work on the tip through friction (0 at rest)
-  double damping_work_j = 0;
-  double impact_loss_j = 0;
-  double contact_dissipation_j = 0;     // a compliant contact's damping (≤ 0; 0 under the rigid law)
-  double hub_work_j = 0;
-  double energy_change_j = 0;           // of E = T + U plus a compliant contact's elastic energy
+  Ledger ledger;                        // the revolution's terms and energy change
   double mean_hub_torque_n_m = 0;       // hub work / Δθ
   double mean_hub_power_w = 0;          // hub work / Δt
   double max_tip_deflection_ratio = 0;
   double contact_time_s = 0;
   double peak_normal_force_n = 0;
-  double ledger_residual_j = 0;         // hub + friction + surface + damping + impact loss + contact dissipation − energy change
   // The relative change of the section state z = (q/L, q̇/(ωL)) at the revolution's end from the
   // previous section: ‖Δz‖ / max(‖z_k‖, ‖z_(k−1)‖) (0 when both are 0); NaN for an incomplete one.
   double section_distance = NAN;
@@ -130,21 +122,11 @@ struct PassSummary {
   double contact_time_s = 0;
   double peak_normal_force_n = 0;
   double mean_normal_force_n = 0;
-  double normal_impulse_n_s = 0;
-  double friction_work_j = 0;      // ∫F_t V_t dt ≤ 0, V_t the slip relative to the surface [J]
-  // ∫F_t (V_s·t) dt + Σ P⃗·V_s: a moving surface's (a spinning workpiece's) work on the tip through
-  // friction, in sustained contact and at impacts; 0 for a surface at rest [J].
-  double surface_work_j = 0;
-  double damping_work_j = 0;       // −∫q̇ᵀCq̇ dt ≤ 0, the beam's damping (SPEC §11) [J]
-  // −∫(F_n − kδ^{3/2})δ̇ dt ≤ 0: the energy a compliant (Hertz) contact's damping takes (0 under the rigid law) [J]
-  double contact_dissipation_j = 0;
-  // The energy ledger in the inertial frame (SPEC §7, §11), works signed as energy given to the
-  // filament: hub_work_j + friction_work_j + surface_work_j + damping_work_j + impact_loss_j +
-  // contact_dissipation_j = energy_change_j.
-  double hub_work_j = 0;            // ω ∫τ dt including the impulsive part, from the angular-momentum balance [J]
-  double hub_impulsive_work_j = 0;  // the hub's work during the impacts (the constraint moves) [J]
-  double impact_loss_j = 0;         // the contact impulses' work on the tip less a moving surface's part: −(energy the impacts dissipate) ≤ 0 [J]
-  double energy_change_j = 0;       // E = T + U (+ a compliant contact's elastic energy (2/5)kδ^{5/2}) at the end less at the start [J]
+  // The ledger of the pass in the inertial frame (SPEC §7, §11; ledger.hpp): works signed as energy
+  // given to the filament, whose energy terms sum to the change of E = T + U (+ a compliant
+  // contact's elastic energy (2/5)kδ^{5/2}), and the momenta exchanged with the surface.
+  Ledger ledger;
+  double hub_impulsive_work_j = 0;  // the part of the hub's work done during the impacts (the constraint moves) [J]
   double max_tip_deflection_ratio = 0;
   Validity validity = Validity::within;
   double energy_audit_residual = 0;

@@ -1,19 +1,19 @@
 // The steppers' contract (SPEC §6): one interface under the pass driver, modelled on SUNDIALS'
 // CVODE — a step call that returns a status, root functions with directions, statistics. The
-// driver (pass_driver.hpp) owns the phase logic (free → impact → contact → separation, stick,
-// Painlevé); a stepper only advances the state of its phase and reports what it crossed.
+// driver (pass_driver.hpp) owns the phase logic and the contact law (contact_law.hpp) its
+// transitions; a stepper only advances the state of its phase and reports what it crossed.
 //
-// Root functions, with the direction that counts:
-//   gap_closes           free flight   C(t, q)            crosses 0 upward    (a touch: impact or contact)
-//   multiplier_vanishes  contact       λ(t, q, q̇)         crosses 0 upward    (separation)
-//   slip_stops           contact       s_t·V_t(t, q, q̇)   crosses 0 downward  (slip reversal, stick, lift-off)
-//   gap_opens            compliant     C(t, q)            crosses 0 downward  (the end of a Hertz contact)
+// Root functions, each oriented so that its event is a crossing from below zero to zero or above:
+//   free flight   C(t, q)   (a touch: the gap closes)
+//   contact       the contact law's roots of the phase (ContactLaw::roots), e.g. the rigid law's
+//                 λ (separation) and −s_t V_t (the slip stops), the compliant law's −C (the gap opens)
 #pragma once
 
 #include "rotbeam/contact_law.hpp"
+#include "rotbeam/ledger.hpp"
 #include "rotbeam/outcome.hpp"
 #include "rotbeam/pass_options.hpp"
-#include "rotbeam/surface.hpp"
+#include "rotbeam/state.hpp"
 
 #include <memory>
 #include <optional>
@@ -21,40 +21,18 @@
 
 namespace rotbeam {
 
-enum class Phase { free, contact, stick };
-const char* phase_name(Phase p);
-
-/// The mechanical system of a pass: the beam on its hub, the surface and the contact law.
-/// Read-only; any number of passes may share one.
-struct System {
-  const BeamModel& beam;
-  const Surface& surface;
-  ContactLaw law;
-};
-
-/// The state of one filament: time, modal coordinates and velocities, phase and slip direction.
-struct FilamentState {
-  explicit FilamentState(int n) : q(Eigen::VectorXd::Zero(n)), qd(Eigen::VectorXd::Zero(n)) {}
-  double t = 0;            // [s]
-  Eigen::VectorXd q, qd;   // [m], [m/s]
-  Phase phase = Phase::free;
-  double slip = 0;         // s_t ∈ {−1, 0, +1}: the friction acts against it (contact only)
-};
-
-/// Integrals over a step: the contact's (zero in free flight), its largest normal force, and the
-/// beam's damping work (every phase).
+/// Integrals over a step: the ledger's terms (ledger.hpp; the contact's are zero in free flight, the
+/// beam's damping work is there in every phase) and the largest normal force inside the step.
 struct StepIntegrals {
-  double work = 0;               // ∫ q̇ᵀQ_contact dt [J]
-  double friction_work = 0;      // ∫ F_t V_t dt [J]
-  double normal_impulse = 0;     // ∫ F_n dt [N s]
-  double contact_moment = 0;     // ∫ (X_t F_Y − Y_t F_X) dt, the contact force's angular impulse about the hub [N m s]
+  LedgerValues integral;
   double peak_normal_force = 0;  // the largest F_n over the step, its interior included [N]
-  double damping_work = 0;       // −∫ q̇ᵀC q̇ dt ≤ 0, the work of the beam's damping (SPEC §11) [J]
-  double surface_work = 0;       // ∫ F_t (V_s·t) dt [J]: a moving surface's work through friction
-  double contact_dissipation = 0;  // ∫ −(F_n − kδ^{3/2})δ̇ dt ≤ 0, the compliant contact's damping (SPEC §11) [J]
 };
 
-enum class Root { none, gap_closes, multiplier_vanishes, slip_stops, gap_opens };
+enum class Root {
+  none,
+  gap_closes,  // free flight: C = 0 (a touch)
+  contact,     // a root of the contact law's phase: StepOutcome::contact_root says which
+};
 
 enum class StepStatus {
   advanced,  // an ordinary step: the state is at its end
@@ -73,6 +51,7 @@ struct StepNote {
 struct StepOutcome {
   StepStatus status = StepStatus::advanced;
   Root root = Root::none;
+  int contact_root = -1;                     // root == contact: its index in ContactLaw::roots(phase)
   ContactLoad load;                          // contact load at the step's end (contact steps)
   StepIntegrals integrals;                   // over the step (contact steps)
   std::optional<NumericalFailure> failure;   // status == failed
@@ -89,9 +68,10 @@ struct StepperStatistics {
 /// What a stepper does itself, and so what the driver does for it.
 struct StepperTraits {
   Scheme scheme;
-  // True: the stepper locates V_t = 0 (Root::slip_stops). False: the driver checks the slip
-  // direction from V_t before every contact step (the thesis's Appendix B does so).
-  bool locates_slip_stops;
+  // True: the stepper locates every root of the contact law's phase. False: only the contact's end;
+  // the law's before_step runs before every contact step (the thesis's Appendix B checks the slip
+  // direction from V_t there).
+  bool locates_contact_roots;
   // At a contact start whose acceleration-level multiplier is positive: true, the tip lifts off at
   // once; false, the stepper's own contact step decides (the thesis's corrector may keep contact).
   bool lifts_off_on_positive_multiplier;
@@ -112,12 +92,8 @@ public:
   virtual StepperTraits traits() const = 0;
   /// Free flight begins at `state`.
   virtual void begin_free(const FilamentState& state, FreeStart start) = 0;
-  /// Sustained contact begins at `state` with the acceleration-level multiplier λ0.
-  virtual void begin_contact(const FilamentState& state, double lambda0) = 0;
-  /// A compliant (Hertz) contact begins at `state` (C = 0, approaching) with the Hunt–Crossley
-  /// damping c [s/m] of this contact (contact_law.hpp); its steps end at Root::gap_opens. Only the
-  /// adaptive scheme integrates it (the configuration refuses the thesis's with contact.model = "hertz").
-  virtual void begin_compliant_contact(const FilamentState& state, double damping);
+  /// A contact phase of the law begins at `state` (state.phase, state.episode set by the law).
+  virtual void begin_contact(const FilamentState& state) = 0;
   /// One step of the current phase from `state`, never beyond t_stop.
   virtual StepOutcome step(FilamentState& state, double t_stop) = 0;
   /// The free-flight state at t inside the step just taken (CVODE's CVodeGetDky at order 0), into
@@ -137,7 +113,8 @@ std::unique_ptr<Stepper> make_thesis_stepper(const System& system, const PassOpt
 /// dense output, projection onto C = 0, Ċ = 0 after every contact step.
 std::unique_ptr<Stepper> make_adaptive_stepper(const System& system, const PassOptions& options);
 
-/// The stepper of options.scheme.
+/// The stepper of options.scheme. Throws std::invalid_argument for the thesis scheme under a contact law
+/// it does not integrate (ContactLaw::has_thesis_scheme).
 std::unique_ptr<Stepper> make_stepper(const System& system, const PassOptions& options);
 
 }  // namespace rotbeam

@@ -24,23 +24,28 @@ ContactLoad contact_load(const FrictionModel& friction, const TipKinematics& tip
                          const Eigen::Ref<const Eigen::VectorXd>& qd, double lambda, double slip_direction,
                          Eigen::Ref<Eigen::VectorXd> generalized_force) {
   ContactLoad l;
+  l.slip = slip_direction;
   if (lambda == 0.0) {
     generalized_force.setZero();
     return l;
   }
   l.lambda = lambda;
-  l.slip = slip_direction;
   l.normal_force = reported_normal_force(friction, tip, lambda);
   l.friction_force = -effective_friction(friction, tip) * std::abs(lambda) * slip_direction;
   generalized_force = lambda * tip.grad_gap + l.friction_force * tip.grad_tangent;
   l.force_x = lambda * tip.normal_x + l.friction_force * tip.tangent_x;
   l.force_y = lambda * tip.normal_y + l.friction_force * tip.tangent_y;
-  l.moment = tip.X * l.force_y - tip.Y * l.force_x;
-  l.power = qd.dot(generalized_force);
-  l.slip_power = l.friction_force * tip.slip_speed;
-  l.surface_power = l.friction_force * (tip.surface_vx * tip.tangent_x + tip.surface_vy * tip.tangent_y);
+  l.rate[LedgerTerm::contact_moment] = tip.X * l.force_y - tip.Y * l.force_x;
+  l.rate[LedgerTerm::contact_work] = qd.dot(generalized_force);
+  l.rate[LedgerTerm::friction_work] = l.friction_force * tip.slip_speed;
+  l.rate[LedgerTerm::surface_work] =
+      l.friction_force * (tip.surface_vx * tip.tangent_x + tip.surface_vy * tip.tangent_y);
+  l.rate[LedgerTerm::normal_impulse] = l.normal_force;
+  l.rate[LedgerTerm::tangential_impulse] = l.friction_force;
   return l;
 }
+
+const char* contact_model_name(ContactModel m) { return m == ContactModel::hertz ? "hertz" : "rigid"; }
 
 double hertz_stiffness(const HertzContact& hertz, double wire_youngs_pa, double wire_diameter_m) {
   const double radius = hertz.tip_radius_m > 0.0 ? hertz.tip_radius_m : 0.5 * wire_diameter_m;
@@ -63,7 +68,7 @@ double hunt_crossley_product(double e) {
   return 0.5 * (r.first + r.second);
 }
 
-double hertz_damping(const ContactLaw& law, double v0, double full_speed) {
+double hertz_damping(const ContactSettings& law, double v0, double full_speed) {
   ImpactLaw impact = law.impact;
   impact.plastic_below_m_s = 0.0;  // a compliant contact resolves slow touches in time
   const double e = std::max(restitution(impact, std::abs(v0), full_speed), kMinCompliantRestitution);
@@ -71,18 +76,42 @@ double hertz_damping(const ContactLaw& law, double v0, double full_speed) {
   return hunt_crossley_product(e) / speed;
 }
 
-double hertz_normal_force(const HertzContact& hertz, double damping, double delta, double delta_rate) {
+double hertz_normal_force(double stiffness, double damping, double delta, double delta_rate) {
   if (!(delta > 0.0)) return 0.0;
-  return std::max(0.0, hertz.stiffness * delta * std::sqrt(delta) * (1.0 + damping * delta_rate));
+  return std::max(0.0, stiffness * delta * std::sqrt(delta) * (1.0 + damping * delta_rate));
 }
 
-double hertz_elastic_energy(const HertzContact& hertz, double delta) {
-  return delta > 0.0 ? 0.4 * hertz.stiffness * delta * delta * std::sqrt(delta) : 0.0;
+double hertz_elastic_energy(double stiffness, double delta) {
+  return delta > 0.0 ? 0.4 * stiffness * delta * delta * std::sqrt(delta) : 0.0;
 }
 
-double hertz_dissipation_rate(const HertzContact& hertz, double normal_force, double delta, double delta_rate) {
+double hertz_dissipation_rate(double stiffness, double normal_force, double delta, double delta_rate) {
   if (!(delta > 0.0)) return 0.0;
-  return -(normal_force - hertz.stiffness * delta * std::sqrt(delta)) * delta_rate;
+  return -(normal_force - stiffness * delta * std::sqrt(delta)) * delta_rate;
 }
+
+// ---- the law's defaults -----------------------------------------------------------------------------
+
+ContactSample ContactLaw::sample_at_start(const System& system, const ContactEpisode& episode, double t,
+                                          const Eigen::Ref<const Eigen::VectorXd>& q,
+                                          const Eigen::Ref<const Eigen::VectorXd>& qd, BeamWorkspace& ws,
+                                          TipKinematics& tip) const {
+  return sample(system, episode, t, q, qd, ws, tip);
+}
+
+double ContactLaw::stored_energy(const System&, double, const Eigen::Ref<const Eigen::VectorXd>&) const { return 0.0; }
+
+FailureKind ContactLaw::failure_kind(const ContactEvaluation&) const { return FailureKind::painleve; }
+
+std::string ContactLaw::failure_message(const ContactEvaluation& e) const {
+  return std::string("the ") + name() + " contact law has no admissible force here (a = " + std::to_string(e.a) +
+         ", b = " + std::to_string(e.b) + ", c = " + std::to_string(e.c) + ")";
+}
+
+void ContactLaw::root(PhaseControl&, int k) const {
+  throw std::logic_error(std::string("the ") + name() + " contact law has no root " + std::to_string(k));
+}
+
+bool ContactLaw::before_step(PhaseControl&) const { return true; }
 
 }  // namespace rotbeam

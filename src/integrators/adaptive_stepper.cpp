@@ -1,28 +1,26 @@
 // The adaptive event-driven scheme as a stepper (SPEC §6): Dormand–Prince 5(4) with dense output
-// from Boost.Odeint, roots located on the dense output, projection onto the constraint in contact.
+// from Boost.Odeint, roots located on the dense output, the contact law's phases integrated as it
+// says (contact_law.hpp).
 //
-// State x = (q, q̇, W, W_f, I_n, I_m, W_d), or with the integrating factor (the default,
-// integrating_factor.hpp) x = (v, W, …) where (η, η̇) = E(t − t_b) v are the linear modal
-// coordinates: the linear oscillation about q = 0 is then exact and the pair's error control sees
-// only the nonlinear remainder, so the step is no longer set by the highest mode's period. W = ∫q̇ᵀQ dt, W_f = ∫F_t V_t dt, I_n = ∫F_n dt, the contact
-// force's angular impulse I_m = ∫(X_t F_Y − Y_t F_X) dt and the damping work W_d = −∫q̇ᵀCq̇ dt are
-// integrated with the motion (under the same error control) and reset after every accepted contact
-// step and at every start of free flight, so the energy audit and the integrals are as accurate as
-// the tolerance.
-//   free flight  q̈ = −M⁻¹Ψ; root C = 0 (upward)
-//   contact      q̈ = M⁻¹(−Ψ + λ∇C + |λ|Q*) with λ from a λ + b|λ| = c at every evaluation;
-//                roots λ = 0 (upward) and s_t V_t = 0 (downward); before each step q and q̇ are
-//                projected (mass-weighted) onto C = 0 and Ċ = 0, and again at its end
-//   compliant    (contact.model = "hertz") q̈ = M⁻¹(−Ψ + Q) with Q from contact_load at λ = −F_n,
-//                F_n = hertz_normal_force(δ = C, δ̇ = Ċ) and the regularised slip: a smooth
-//                right-hand side inside the contact, whose duration the error control resolves;
-//                root C = 0 (downward, the contact's end); W_c = ∫ dissipation dt is integrated too
+// State x = (q, q̇, L), or with the integrating factor (the default, integrating_factor.hpp)
+// x = (v, L) where (η, η̇) = E(t − t_b) v are the linear modal coordinates: the linear oscillation
+// about q = 0 is then exact and the pair's error control sees only the nonlinear remainder, so the
+// step is no longer set by the highest mode's period. L holds the ledger's terms (ledger.hpp),
+// integrated with the motion under the same error control from the rates the contact law gives
+// (and the beam's damping), so the energy audit and the integrals are as accurate as the tolerance.
+//   free flight      q̈ = −M⁻¹Ψ; root C = 0 (upward)
+//   a constraint     (the rigid law's sliding contact) q̈ = M⁻¹(−Ψ + Q) with Q from the law at every
+//                    evaluation (λ from a λ + b|λ| = c); before each step q and q̇ are projected
+//                    (mass-weighted) onto C = 0 and Ċ = 0, and again at its end; L restarts each step
+//   a force          (the compliant law) q̈ = M⁻¹(−Ψ + Q): a smooth right-hand side inside the
+//                    contact, whose duration the error control resolves; L runs on, each step reports
+//                    its increment
 // Each step's dense output is sampled at interior points before root finding (TOMS 748), so a
-// crossing and re-crossing within one step is still found; the largest normal force inside a
-// contact step is found on the dense output too (Brent), and so is a whole rebound flight that fits
-// inside one step (the lowest gap of the step arms the impact detector).
+// crossing and re-crossing within one step is still found; the first root of a contact phase is
+// sampled with the normal force, whose largest value inside the step is found on the dense output too
+// (Brent), and so is a whole rebound flight that fits inside one step (the lowest gap of the step
+// arms the impact detector).
 #include "rotbeam/integrating_factor.hpp"
-#include "rotbeam/rigid_contact.hpp"
 #include "rotbeam/stepper.hpp"
 #include "rotbeam/detail/diagnostics.hpp"
 
@@ -30,6 +28,8 @@
 #include <boost/math/tools/toms748_solve.hpp>
 #include <boost/numeric/odeint.hpp>
 #include <array>
+#include <span>
+#include <stdexcept>
 #include <cmath>
 #include <functional>
 #include <optional>
@@ -46,32 +46,31 @@ constexpr int kSamplesPerStep = 4;  // interior samples of the dense output per 
 // Free flight samples the gap at least this many times per period of the highest linear mode, so
 // that a step spanning several of its periods (the integrating factor allows it) misses no touch.
 constexpr double kSamplesPerPeriod = 8.0;
-constexpr int kIntegrals = 7;       // W, W_f, I_n, I_m, W_d, W_s, W_c after q and q̇ in the state
-constexpr int kDampingWork = 4;     // W_d's place among them
-constexpr int kSurfaceWork = 5;     // W_s's (a moving surface's work through friction)
-constexpr int kContactDissipation = 6;  // W_c's (a compliant contact's damping)
+constexpr int kLedger = static_cast<int>(kLedgerTermCount);  // the ledger's terms after q and q̇ in the state
+constexpr int kDampingWork = static_cast<int>(LedgerTerm::damping_work);
 constexpr int kBrentBits = 30;      // a maximum or minimum on the dense output to ~1e-9 of its bracket
 // An accepted step shorter than this fraction of the pass means the tolerance cannot be met in
 // double precision (at rtol ≥ 1e-13 the steps stay above ~1e-9 s for a pass of ~1e-2 s).
 constexpr double kMinStepFraction = 1e-12;
 
 using detail::short_number;
+using Samples = std::array<double, kSamplesPerStep + 1>;
 
 class AdaptiveStepper final : public Stepper {
 public:
   AdaptiveStepper(const System& system, const PassOptions& options)
       : sys_(system),
+        law_(system.law),
         opt_(options),
         n_(system.beam.modes()),
         ws_(system.beam.make_workspace()),
         ews_(system.beam.make_workspace()),
         tip_(n_),
         etip_(n_),
-        x_(2 * n_ + kIntegrals, 0.0),
-        xs_(2 * n_ + kIntegrals, 0.0),
+        x_(2 * n_ + kLedger, 0.0),
+        xs_(2 * n_ + kLedger, 0.0),
         q_(n_),
         qd_(n_),
-        qstar_(n_),
         force_(n_),
         w_(n_),
         pq_(n_),
@@ -90,7 +89,7 @@ public:
 
   StepperTraits traits() const override { return {Scheme::adaptive, true, true}; }
 
-  void begin_free(const FilamentState& s, FreeStart start) override {
+  void begin_free(const FilamentState& s, FreeStart) override {
     phase_ = Phase::free;
     // A new flight starts with a small trial step: after an impact or a separation the previous
     // step size belongs to the motion before the jump, and a step that holds a whole short rebound
@@ -118,22 +117,22 @@ public:
     g_prev_ = c - offset_;
   }
 
-  void begin_contact(const FilamentState&, double) override { phase_ = Phase::contact; }
-
-  void begin_compliant_contact(const FilamentState& s, double damping) override {
-    phase_ = Phase::contact;
-    damping_ = damping;
+  // A constraint restarts at every step (contact_step); a force phase starts its integration here.
+  void begin_contact(const FilamentState& s) override {
+    phase_ = s.phase;
+    episode_ = s.episode;
+    if (law_.kind(phase_) != PhaseKind::force) return;
     dt_ = kInitialStep;
     t_ = s.t;
     q_ = s.q;
     qd_ = s.qd;
     reinitialize();
-    marks_.fill(0.0);
+    marks_ = {};
   }
 
   StepOutcome step(FilamentState& s, double t_stop) override {
     if (s.phase == Phase::free) return free_step(s, t_stop);
-    return compliant_ ? compliant_step(s, t_stop) : contact_step(s, t_stop);
+    return contact_step(s, t_stop);
   }
 
   const StepperStatistics& statistics() const override { return stats_; }
@@ -147,9 +146,8 @@ public:
 
 private:
   // ---- state packing ------------------------------------------------------------------------
-  // The integrated state is x = (q, q̇, integrals), or with the integrating factor
-  // x = (v, integrals) with y = E(t − t_b) v (integrating_factor.hpp); the base time t_b is the
-  // last (re)initialisation.
+  // The integrated state is x = (q, q̇, L), or with the integrating factor x = (v, L) with
+  // y = E(t − t_b) v (integrating_factor.hpp); the base time t_b is the last (re)initialisation.
   void pack() {
     base_ = t_;
     if (factor_) {
@@ -160,7 +158,7 @@ private:
         x_[n_ + i] = qd_[i];
       }
     }
-    for (int k = 0; k < kIntegrals; ++k) x_[2 * n_ + k] = 0.0;
+    for (int k = 0; k < kLedger; ++k) x_[2 * n_ + k] = 0.0;
   }
   // q, q̇ of the integrated state x at time t.
   template <class Q, class Qd>
@@ -180,9 +178,11 @@ private:
   int free_samples(double h) const {
     return std::max(kSamplesPerStep, static_cast<int>(std::ceil(kSamplesPerPeriod * h * highest_hz_)));
   }
-  StepIntegrals integrals_of(const State& x) const {
-    return {x[2 * n_],           x[2 * n_ + 1], x[2 * n_ + 2], x[2 * n_ + 3], 0.0, x[2 * n_ + kDampingWork],
-            x[2 * n_ + kSurfaceWork], x[2 * n_ + kContactDissipation]};
+  // The ledger's integrals held in x.
+  LedgerValues ledger_of(const State& x) const {
+    LedgerValues l;
+    for (int k = 0; k < kLedger; ++k) l.value[k] = x[2 * n_ + k];
+    return l;
   }
   void store(FilamentState& s) const {
     s.t = t_;
@@ -200,47 +200,21 @@ private:
     if (phase_ == Phase::free) {
       acceleration(sys_.beam, q, qd, nullptr, *ws_, a);
       motion_derivative(dxdt);
-      for (int k = 0; k < kIntegrals; ++k) dxdt[2 * n_ + k] = 0.0;
+      for (int k = 0; k < kLedger; ++k) dxdt[2 * n_ + k] = 0.0;
       if (damped_) dxdt[2 * n_ + kDampingWork] = -sys_.beam.dissipation(qd);
       return;
     }
-    if (compliant_) {
-      const HertzContact& hertz = sys_.law.hertz;
-      tip_kinematics(sys_.beam, sys_.surface, t, q, qd, tip_);
-      const double fn = hertz_normal_force(hertz, damping_, tip_.gap, tip_.gap_rate);
-      const double slip = regularized_slip(tip_.slip_speed, hertz.friction_regularization_m_s);
-      const ContactLoad load = contact_load(sys_.law.friction, tip_, qd, -fn, slip, force_);
-      acceleration(sys_.beam, q, qd, &force_, *ws_, a);
-      motion_derivative(dxdt);
-      integral_rates(load, qd, hertz_dissipation_rate(hertz, fn, tip_.gap, tip_.gap_rate), dxdt);
-      return;
+    const ContactEvaluation e = law_.evaluate(sys_, episode_, t, q, qd, *ws_, tip_, force_);
+    if (!e.admissible && !inadmissible_) {
+      inadmissible_ = true;
+      inadmissible_t_ = t;
+      inadmissible_at_ = e;
     }
-    const AccelerationMultiplier am =
-        acceleration_multiplier(sys_.beam, sys_.surface, sys_.law.friction, t, q, qd, slip_, *ws_, tip_);
-    if (am.solution.status != MultiplierSolution::Status::unique && !painleve_) {
-      painleve_ = true;
-      painleve_t_ = t;
-      painleve_abc_[0] = am.a, painleve_abc_[1] = am.b, painleve_abc_[2] = am.c;
-    }
-    // Past a separation (λ > 0) the contact force is zero; the step is cut at λ = 0 anyway.
-    const double lambda = std::min(am.solution.lambda, 0.0);
-    const ContactLoad load = contact_load(sys_.law.friction, tip_, qd, lambda, slip_, force_);
     a = force_ - ws_->psi;
     ws_->mass_llt.solveInPlace(a);
     motion_derivative(dxdt);
-    integral_rates(load, qd, 0.0, dxdt);
-  }
-
-  // The rates of the contact step's integrals (the ledger's terms) from its load, the beam's damping
-  // at q̇ and a compliant contact's dissipation rate [W].
-  void integral_rates(const ContactLoad& load, const Eigen::VectorXd& qd, double contact_dissipation, State& dxdt) {
-    dxdt[2 * n_] = load.power;
-    dxdt[2 * n_ + 1] = load.slip_power;
-    dxdt[2 * n_ + 2] = load.normal_force;
-    dxdt[2 * n_ + 3] = load.moment;
-    dxdt[2 * n_ + kSurfaceWork] = load.surface_power;
+    for (int k = 0; k < kLedger; ++k) dxdt[2 * n_ + k] = e.load.rate.value[k];
     dxdt[2 * n_ + kDampingWork] = damped_ ? -sys_.beam.dissipation(qd) : 0.0;
-    dxdt[2 * n_ + kContactDissipation] = contact_dissipation;
   }
 
   // The derivative of the motion's part of x from q̇ (pqd_) and q̈ (pa_) at the state of the last
@@ -261,40 +235,46 @@ private:
     physical(t, x, pq_, pqd_);
     return gap(sys_.beam, sys_.surface, t, pq_);
   }
-  double state_lambda(double t, const State& x) {
-    physical(t, x, pq_, pqd_);
-    return acceleration_multiplier(sys_.beam, sys_.surface, sys_.law.friction, t, pq_, pqd_, slip_, *ews_, etip_)
-        .solution.lambda;
+  // The contact law's sample (its first root and the normal force) at the dense output's time t.
+  ContactSample state_sample(double t) {
+    stepper_.calc_state(t, xs_);
+    physical(t, xs_, pq_, pqd_);
+    return law_.sample(sys_, episode_, t, pq_, pqd_, *ews_, etip_);
   }
-  // The reported normal force for the multiplier just computed by state_lambda (etip_ at its state).
-  double normal_force_of(double lambda) const {
-    return reported_normal_force(sys_.law.friction, etip_, std::min(lambda, 0.0));
-  }
-  double state_slip_speed(double t, const State& x) {
-    physical(t, x, pq_, pqd_);
-    tip_kinematics(sys_.beam, sys_.surface, t, pq_, pqd_, etip_);
-    return slip_ * etip_.slip_speed;
+  // The contact law's root k at the dense output's time t.
+  double state_root(int k, double t) {
+    stepper_.calc_state(t, xs_);
+    physical(t, xs_, pq_, pqd_);
+    return law_.root_value(phase_, k, sys_, episode_, t, pq_, pqd_, *ews_, etip_);
   }
 
-  // First t in (ta, tb] where g changes from < 0 to ≥ 0, given g(ta) < 0, looked for at `samples`
-  // interior points; NaN if none.
-  double first_root(const std::function<double(double)>& g, double ta, double tb, double ga,
-                    int samples = kSamplesPerStep) {
+  // First t in (ta, tb] where a root function changes from < 0 to ≥ 0, given its value ga < 0 at ta:
+  // `sampled(k, t)` gives its value at the k-th of `samples` interior points (and may record what it
+  // computes there), `refined(t)` at the points TOMS 748 asks for while closing the bracket to
+  // options.event_tolerance_s; NaN if none. `sampled_last` is the last sample taken.
+  template <class Sampled, class Refined>
+  double first_root(Sampled&& sampled, Refined&& refined, double ta, double tb, double ga, int samples,
+                    int* sampled_last = nullptr) {
     double t_prev = ta, g_prev = ga;
     for (int k = 1; k <= samples; ++k) {
       const double tk = ta + (tb - ta) * k / samples;
-      const double gk = g(tk);
+      const double gk = sampled(k, tk);
+      if (sampled_last) *sampled_last = k;
       if (g_prev < 0.0 && gk >= 0.0) {
         boost::uintmax_t iters = 200;
         const double tol_s = opt_.event_tolerance_s;
         const auto tol = [tol_s](double a, double b) { return std::abs(b - a) <= tol_s; };
-        const auto br = boost::math::tools::toms748_solve(g, t_prev, tk, g_prev, gk, tol, iters);
+        const auto br = boost::math::tools::toms748_solve(refined, t_prev, tk, g_prev, gk, tol, iters);
         return br.second;
       }
       t_prev = tk;
       g_prev = gk;
     }
     return NAN;
+  }
+  template <class G>
+  double first_root(G&& g, double ta, double tb, double ga, int samples = kSamplesPerStep) {
+    return first_root([&g](int, double t) { return g(t); }, g, ta, tb, ga, samples);
   }
 
   // ---- projection onto C = 0, Ċ = 0 (mass-weighted) ------------------------------------------
@@ -377,7 +357,7 @@ private:
       unpack(root, xs_);
       t_ = root;
       store(s);
-      out.integrals.damping_work = xs_[2 * n_ + kDampingWork] - free_damping_;
+      out.integrals.integral[LedgerTerm::damping_work] = xs_[2 * n_ + kDampingWork] - free_damping_;
       out.status = StepStatus::root;
       out.root = Root::gap_closes;
       return out;
@@ -385,7 +365,7 @@ private:
     if (te < tb) stepper_.calc_state(te, xs_);
     const State& xe = te < tb ? xs_ : stepper_.current_state();
     unpack(te, xe);
-    out.integrals.damping_work = xe[2 * n_ + kDampingWork] - free_damping_;
+    out.integrals.integral[LedgerTerm::damping_work] = xe[2 * n_ + kDampingWork] - free_damping_;
     free_damping_ = xe[2 * n_ + kDampingWork];
     if (!q_.allFinite() || !qd_.allFinite()) return failed(FailureKind::non_finite, "the free-flight state became non-finite");
     t_ = te;
@@ -426,182 +406,104 @@ private:
     g_from = c;
   }
 
+  // One step of a contact phase of the law (contact_law.hpp). A constraint is projected onto C = 0,
+  // Ċ = 0 and restarted at the step's start and projected again at its end; a force phase runs on
+  // (restarted where a section cut the step or the integrating factor's base moves). The law's first
+  // root is sampled at interior points of the dense output together with the normal force, its other
+  // roots on their own; the earliest crossing ends the step, and the step's largest normal force is
+  // found on the samples and refined by Brent between the best one's neighbours.
   StepOutcome contact_step(FilamentState& s, double t_stop) {
-    const FrictionModel& friction = sys_.law.friction;
     StepOutcome out;
-    t_ = s.t;
-    q_ = s.q;
-    qd_ = s.qd;
-    slip_ = s.slip;
-    project(t_);
-    store(s);  // the projected state is the start of the step (and the last good one)
-    reinitialize();
-    painleve_ = false;
-    const double lambda0 = std::min(state_lambda(t_, x_), 0.0);
-    load_start_ = normal_force_of(lambda0);
-    const double slip0 = state_slip_speed(t_, x_);
+    const bool constraint = law_.kind(s.phase) == PhaseKind::constraint;
+    episode_ = s.episode;
+    if (constraint) {
+      t_ = s.t;
+      q_ = s.q;
+      qd_ = s.qd;
+      project(t_);
+      store(s);  // the projected state is the start of the step (and the last good one)
+      reinitialize();
+      physical(t_, x_, pq_, pqd_);
+    } else {
+      const bool rebase = factor_ && (t_ - base_) * factor_rebase_rate_ > 1.0;
+      if (stepper_.current_time() != s.t || t_ != s.t || rebase) {  // cut at a section, or the factor's base moves
+        t_ = s.t;
+        q_ = s.q;
+        qd_ = s.qd;
+        reinitialize();
+        marks_ = {};
+      }
+      pq_ = q_;
+      pqd_ = qd_;
+    }
+    inadmissible_ = false;
+    const std::span<const ContactRoot> roots = law_.roots(s.phase);
+    const int count = static_cast<int>(roots.size());
+    const ContactSample start = law_.sample_at_start(sys_, episode_, t_, pq_, pqd_, *ews_, etip_);
+    std::array<double, kMaxRoots> g0{};
+    for (int k = 1; k < count; ++k) g0[k] = law_.root_value(s.phase, k, sys_, episode_, t_, pq_, pqd_, *ews_, etip_);
     double ta = 0, tb = 0;
     if (!advance(t_stop, ta, tb, out)) return out;
-    if (painleve_) {
-      out = failed(FailureKind::painleve, detail::painleve_message(painleve_abc_[0], painleve_abc_[1], painleve_abc_[2]));
-      out.failure->t = painleve_t_;
+    if (inadmissible_) {
+      out = failed(law_.failure_kind(inadmissible_at_), law_.failure_message(inadmissible_at_));
+      out.failure->t = inadmissible_t_;
       return out;
     }
     const double te = std::min(tb, t_stop);
-    // Separation: λ crosses 0 upward. Slip stop: s·V_t crosses 0 downward. λ is sampled at interior
-    // points once, for the separation root and for the step's largest normal force.
-    auto g_lambda = [&](double t) {
-      stepper_.calc_state(t, xs_);
-      return state_lambda(t, xs_);
-    };
-    auto g_slip = [&](double t) {
-      stepper_.calc_state(t, xs_);
-      return -state_slip_speed(t, xs_);
-    };
-    std::array<double, kSamplesPerStep + 1> ts{}, fn{};
+    Samples ts{}, fn{};
     ts[0] = ta;
-    fn[0] = load_start_;
+    fn[0] = start.normal_force;
     int sampled = 0;
-    double t_sep = NAN;
-    if (lambda0 < 0.0) {
-      double l_prev = lambda0;
-      for (int k = 1; k <= kSamplesPerStep; ++k) {
-        ts[k] = ta + (te - ta) * k / kSamplesPerStep;
-        const double lk = g_lambda(ts[k]);
-        fn[k] = normal_force_of(lk);
-        sampled = k;
-        if (l_prev < 0.0 && lk >= 0.0) {
-          boost::uintmax_t iters = 200;
-          const double tol_s = opt_.event_tolerance_s;
-          const auto tol = [tol_s](double a, double b) { return std::abs(b - a) <= tol_s; };
-          t_sep = boost::math::tools::toms748_solve(g_lambda, ts[k - 1], ts[k], l_prev, lk, tol, iters).second;
-          break;
-        }
-        l_prev = lk;
-      }
-    }
-    const double t_slip = slip0 > 0.0 ? first_root(g_slip, ta, te, -slip0) : NAN;
     double t_event = te;
-    Root root = Root::none;
-    if (!std::isnan(t_sep)) t_event = t_sep, root = Root::multiplier_vanishes;
-    if (!std::isnan(t_slip) && t_slip < t_event) t_event = t_slip, root = Root::slip_stops;
-    const double peak = step_peak(ts, fn, sampled, t_event, g_lambda);
-    if (t_event < tb || root != Root::none) stepper_.calc_state(t_event, xs_);
-    const State& xe = (t_event < tb || root != Root::none) ? xs_ : stepper_.current_state();
-    unpack(t_event, xe);
-    out.integrals = integrals_of(xe);
-    const double t_start = t_;
-    t_ = t_event;
-    project(t_);
-    if (!q_.allFinite() || !qd_.allFinite()) {
-      t_ = t_start;
-      return failed(FailureKind::non_finite, "the contact state became non-finite");
+    int root = -1;
+    if (start.root < 0.0) {
+      auto sample = [&](int k, double t) {
+        const ContactSample c = state_sample(t);
+        ts[k] = t;
+        fn[k] = c.normal_force;
+        return c.root;
+      };
+      auto refine = [&](double t) { return state_root(0, t); };
+      const double t0 = first_root(sample, refine, ta, te, start.root, kSamplesPerStep, &sampled);
+      if (!std::isnan(t0)) t_event = t0, root = 0;
     }
+    for (int k = 1; k < count; ++k) {
+      if (!(g0[k] < 0.0)) continue;
+      const double tk = first_root([&](double t) { return state_root(k, t); }, ta, te, g0[k]);
+      if (!std::isnan(tk) && tk < t_event) t_event = tk, root = k;
+    }
+    const double peak = sampled_peak(ts, fn, sampled, t_event);
+    const bool at_dense = constraint ? (t_event < tb || root >= 0) : t_event < tb;
+    if (at_dense) stepper_.calc_state(t_event, xs_);
+    const State& xe = at_dense ? xs_ : stepper_.current_state();
+    unpack(t_event, xe);
+    const LedgerValues total = ledger_of(xe);
+    out.integrals.integral = constraint ? total : total - marks_;
+    if (!constraint) marks_ = total;
+    if (constraint) project(t_event);
+    if (!q_.allFinite() || !qd_.allFinite())
+      return failed(FailureKind::non_finite, std::string("the ") + law_.name() + " contact state became non-finite");
+    t_ = t_event;
     store(s);
-    out.root = root;
-    out.status = root == Root::none ? StepStatus::advanced : StepStatus::root;
+    out.root = root >= 0 ? Root::contact : Root::none;
+    out.contact_root = root;
+    out.status = root >= 0 ? StepStatus::root : StepStatus::advanced;
     out.integrals.peak_normal_force = peak;
-    if (root == Root::multiplier_vanishes) return out;
-    const AccelerationMultiplier am =
-        acceleration_multiplier(sys_.beam, sys_.surface, friction, t_, q_, qd_, slip_, *ws_, tip_);
-    out.load = contact_load(friction, tip_, qd_, std::min(am.solution.lambda, 0.0), slip_, force_);
+    if (root >= 0 && roots[root].ends_contact) {
+      out.load.slip = s.episode.slip;  // no force once the contact has ended
+      return out;
+    }
+    const ContactEvaluation end = law_.evaluate(sys_, episode_, t_, q_, qd_, *ws_, tip_, force_);
+    out.load = end.load;
+    s.episode.slip = end.load.slip;
     out.integrals.peak_normal_force = std::max(peak, out.load.normal_force);
     return out;
   }
 
-  // The compliant contact at (t, q, q̇) of a dense-output state: tip kinematics into etip_, F_n returned.
-  double compliant_force(double t, const State& x) {
-    physical(t, x, pq_, pqd_);
-    tip_kinematics(sys_.beam, sys_.surface, t, pq_, pqd_, etip_);
-    return hertz_normal_force(sys_.law.hertz, damping_, etip_.gap, etip_.gap_rate);
-  }
-
-  // One step of a compliant (Hertz) contact: the force is a smooth function of the state, so the
-  // step is an ordinary error-controlled step (no projection); the contact ends where C crosses 0
-  // downward (looked for at interior samples of the dense output, then TOMS 748), and the step's
-  // largest F_n is found on the samples and refined by Brent between the best one's neighbours.
-  StepOutcome compliant_step(FilamentState& s, double t_stop) {
-    StepOutcome out;
-    const bool rebase = factor_ && (t_ - base_) * factor_rebase_rate_ > 1.0;
-    if (stepper_.current_time() != s.t || t_ != s.t || rebase) {  // cut at a section, or the factor's base moves
-      t_ = s.t;
-      q_ = s.q;
-      qd_ = s.qd;
-      reinitialize();
-      marks_.fill(0.0);
-    }
-    const double c_start = gap(sys_.beam, sys_.surface, t_, q_);
-    double ta = 0, tb = 0;
-    if (!advance(t_stop, ta, tb, out)) return out;
-    const double te = std::min(tb, t_stop);
-    auto opening = [&](double t) {  // −C: negative inside the contact
-      stepper_.calc_state(t, xs_);
-      return -state_gap(t, xs_);
-    };
-    std::array<double, kSamplesPerStep + 1> ts{}, fn{};
-    ts[0] = ta;
-    stepper_.calc_state(ta, xs_);
-    fn[0] = compliant_force(ta, xs_);
-    double g_prev = std::min(-c_start, -1e-300);
-    double t_end = te;
-    Root root = Root::none;
-    int sampled = 0;
-    for (int k = 1; k <= kSamplesPerStep; ++k) {
-      ts[k] = ta + (te - ta) * k / kSamplesPerStep;
-      stepper_.calc_state(ts[k], xs_);
-      fn[k] = compliant_force(ts[k], xs_);
-      const double gk = -etip_.gap;
-      sampled = k;
-      if (g_prev < 0.0 && gk >= 0.0) {
-        boost::uintmax_t iters = 200;
-        const double tol_s = opt_.event_tolerance_s;
-        const auto tol = [tol_s](double a, double b) { return std::abs(b - a) <= tol_s; };
-        t_end = boost::math::tools::toms748_solve(opening, ts[k - 1], ts[k], g_prev, gk, tol, iters).second;
-        root = Root::gap_opens;
-        break;
-      }
-      g_prev = gk;
-    }
-    auto force_at = [&](double t) {
-      stepper_.calc_state(t, xs_);
-      return compliant_force(t, xs_);
-    };
-    const double peak = sampled_peak(ts, fn, sampled, t_end, force_at);
-    if (t_end < tb) stepper_.calc_state(t_end, xs_);
-    const State& xe = t_end < tb ? xs_ : stepper_.current_state();
-    unpack(t_end, xe);
-    if (!q_.allFinite() || !qd_.allFinite()) return failed(FailureKind::non_finite, "the compliant contact state became non-finite");
-    const StepIntegrals total = integrals_of(xe);
-    out.integrals = total;
-    out.integrals.work -= marks_[0];
-    out.integrals.friction_work -= marks_[1];
-    out.integrals.normal_impulse -= marks_[2];
-    out.integrals.contact_moment -= marks_[3];
-    out.integrals.damping_work -= marks_[4];
-    out.integrals.surface_work -= marks_[5];
-    out.integrals.contact_dissipation -= marks_[6];
-    marks_ = {total.work, total.friction_work, total.normal_impulse, total.contact_moment, total.damping_work,
-              total.surface_work, total.contact_dissipation};
-    t_ = t_end;
-    store(s);
-    tip_kinematics(sys_.beam, sys_.surface, t_, q_, qd_, tip_);
-    const HertzContact& hertz = sys_.law.hertz;
-    const double slip = regularized_slip(tip_.slip_speed, hertz.friction_regularization_m_s);
-    s.slip = slip;
-    const double f_end = root == Root::none ? hertz_normal_force(hertz, damping_, tip_.gap, tip_.gap_rate) : 0.0;
-    out.load = contact_load(sys_.law.friction, tip_, qd_, -f_end, slip, force_);
-    out.load.slip = slip;
-    out.integrals.peak_normal_force = std::max(peak, f_end);
-    out.root = root;
-    out.status = root == Root::none ? StepStatus::advanced : StepStatus::root;
-    return out;
-  }
-
-  // The largest of the sampled forces fn at ts[0..sampled] before t_end, refined by Brent's
-  // maximisation of force_at between the best sample's neighbours when it is an interior one.
-  template <class ForceAt>
-  double sampled_peak(const std::array<double, kSamplesPerStep + 1>& ts, const std::array<double, kSamplesPerStep + 1>& fn,
-                      int sampled, double t_end, ForceAt& force_at) {
+  // The largest of the sampled normal forces fn at ts[0..sampled] before t_end, refined by Brent's
+  // maximisation on the dense output between the best sample's neighbours when it is an interior one
+  // (a maximum inside a step is not lost to the step's ends).
+  double sampled_peak(const Samples& ts, const Samples& fn, int sampled, double t_end) {
     int best = 0, last = 0;
     for (int k = 0; k <= sampled && ts[k] < t_end; ++k) {
       last = k;
@@ -610,40 +512,21 @@ private:
     const double peak = fn[best];
     if (best == 0 || sampled == 0) return peak;
     const double lo = ts[best - 1], hi = best < last ? ts[best + 1] : t_end;
-    auto minus = [&](double t) { return -force_at(t); };
+    auto minus = [&](double t) { return -state_sample(t).normal_force; };
     boost::uintmax_t iters = 100;
     const auto found = boost::math::tools::brent_find_minima(minus, lo, hi, kBrentBits, iters);
     return std::max(peak, -found.second);
   }
 
-  // The largest normal force of a contact step: the sampled values on [ta, t_event) and, where the
-  // largest sample is inside that range, Brent's maximisation on the dense output between its
-  // neighbours (a maximum inside a step is not lost to the step ends).
-  template <class Lambda>
-  double step_peak(const std::array<double, kSamplesPerStep + 1>& ts, const std::array<double, kSamplesPerStep + 1>& fn,
-                   int sampled, double t_event, Lambda& g_lambda) {
-    int best = 0;
-    int last = 0;  // the last sample before the step's end event
-    for (int k = 0; k <= sampled && ts[k] < t_event; ++k) {
-      last = k;
-      if (fn[k] > fn[best]) best = k;
-    }
-    double peak = fn[best];
-    if (best == 0 || sampled == 0) return peak;
-    const double lo = ts[best - 1], hi = best < last ? ts[best + 1] : t_event;
-    auto minus_fn = [&](double t) { return -normal_force_of(g_lambda(t)); };
-    boost::uintmax_t iters = 100;
-    const auto found = boost::math::tools::brent_find_minima(minus_fn, lo, hi, kBrentBits, iters);
-    return std::max(peak, -found.second);
-  }
-
+  static constexpr int kMaxRoots = 8;  // root functions of a contact phase (ContactLaw::roots)
   const System sys_;
+  const ContactLaw& law_;
   const PassOptions opt_;
   int n_;
   std::unique_ptr<BeamWorkspace> ws_, ews_;
   TipKinematics tip_, etip_;
   State x_, xs_;
-  Eigen::VectorXd q_, qd_, qstar_, force_, w_;
+  Eigen::VectorXd q_, qd_, force_, w_;
   Eigen::VectorXd pq_, pqd_, pa_;  // q, q̇, q̈ of a state being evaluated (rhs, root functions)
   std::optional<IntegratingFactor> factor_;  // opt_.integrating_factor
   double highest_hz_ = 0;                    // the highest linear mode [Hz] (0 without the factor)
@@ -652,26 +535,29 @@ private:
   DenseStepper stepper_;
   StepperStatistics stats_;
   Phase phase_ = Phase::free;
+  ContactEpisode episode_;                   // of the contact step under way
   static constexpr double kInitialStep = 1e-7;  // the first trial step of a run or revolution [s]
-  double t_ = 0, dt_ = kInitialStep, slip_ = 0;
-  double load_start_ = 0;  // F_n at the (projected) start of the current contact step [N]
+  double t_ = 0, dt_ = kInitialStep;
   const bool damped_ = sys_.beam.damped();
   double free_damping_ = 0;  // W_d of the free flight at the last reported point [J]
   // The free-flight gap detector (see begin_free).
   double eps_ = 0, offset_ = 0, g_prev_ = 0;
   bool armed_ = false;
-  bool painleve_ = false;
-  double painleve_t_ = 0, painleve_abc_[3] = {0, 0, 0};
-  // The compliant law (contact.model = "hertz"): its damping c [s/m] for the contact under way, and
-  // the integrals at the last reported point since the last (re)initialisation.
-  const bool compliant_ = sys_.law.model == ContactModel::hertz;
-  double damping_ = 0;
-  std::array<double, kIntegrals> marks_{};
+  // The first state of the step where the law had no admissible force (Painlevé's paradox).
+  bool inadmissible_ = false;
+  double inadmissible_t_ = 0;
+  ContactEvaluation inadmissible_at_;
+  // A force phase: the ledger's integrals at the last reported point since the last (re)initialisation
+  // (zero for a constraint, which restarts every step).
+  LedgerValues marks_;
 };
 
 }  // namespace
 
 std::unique_ptr<Stepper> make_adaptive_stepper(const System& system, const PassOptions& options) {
+  if (static_cast<int>(system.law.roots(Phase::contact).size()) > 8)
+    throw std::invalid_argument(std::string("the adaptive scheme takes up to 8 root functions per contact phase; the ") +
+                                system.law.name() + " law has more");
   return std::make_unique<AdaptiveStepper>(system, options);
 }
 

@@ -5,13 +5,12 @@
 namespace rotbeam {
 
 std::unique_ptr<Stepper> make_stepper(const System& system, const PassOptions& options) {
+  if (options.scheme == Scheme::thesis && !system.law.has_thesis_scheme())
+    throw std::invalid_argument(std::string("the thesis scheme has no ") + system.law.name() +
+                                " contact (contact.model = \"" + system.law.name() +
+                                "\" needs simulation.scheme = \"adaptive\")");
   return options.scheme == Scheme::thesis ? make_thesis_stepper(system, options)
                                           : make_adaptive_stepper(system, options);
-}
-
-void Stepper::begin_compliant_contact(const FilamentState&, double) {
-  throw std::logic_error(std::string("the ") + scheme_name(traits().scheme) +
-                         " scheme has no compliant contact (contact.model = \"hertz\" needs simulation.scheme = \"adaptive\")");
 }
 
 const char* scheme_name(Scheme s) { return s == Scheme::thesis ? "thesis" : "adaptive"; }

@@ -29,10 +29,13 @@ constexpr double kMinStepFraction = 1e-12;  // a configured step below this frac
 
 using detail::short_number;
 
+// The contact's integrals over a step by the trapezoidal rule, from its loads at both ends.
 StepIntegrals trapezoid(const ContactLoad& begin, const ContactLoad& end, double dt) {
-  return {0.5 * (begin.power + end.power) * dt, 0.5 * (begin.slip_power + end.slip_power) * dt,
-          0.5 * (begin.normal_force + end.normal_force) * dt, 0.5 * (begin.moment + end.moment) * dt,
-          std::max(begin.normal_force, end.normal_force), 0.0, 0.5 * (begin.surface_power + end.surface_power) * dt};
+  StepIntegrals out;
+  for (std::size_t k = 0; k < kLedgerTermCount; ++k)
+    out.integral.value[k] = 0.5 * (begin.rate.value[k] + end.rate.value[k]) * dt;
+  out.peak_normal_force = std::max(begin.normal_force, end.normal_force);
+  return out;
 }
 
 class ThesisStepper final : public Stepper {
@@ -55,8 +58,9 @@ public:
     c0_ = gap(sys_.beam, sys_.surface, s.t, s.q);
   }
 
-  void begin_contact(const FilamentState&, double lambda0) override {
-    lambda_pred_ = lambda0;
+  // The rigid law's episode starts with its acceleration-level multiplier λ0 (the first prediction).
+  void begin_contact(const FilamentState& s) override {
+    lambda_pred_ = s.episode.parameter[0];
     lambda_prev_ = 0.0;
     load_prev_ = ContactLoad{};
   }
@@ -110,7 +114,7 @@ private:
   StepOutcome free_step(FilamentState& s, double t_stop) {
     step_damping_ = 0.0;
     StepOutcome out = free_step_body(s, t_stop);
-    out.integrals.damping_work = step_damping_;
+    out.integrals.integral[LedgerTerm::damping_work] = step_damping_;
     return out;
   }
 
@@ -207,7 +211,7 @@ private:
     auto accel = [&](double tt, const Eigen::VectorXd& q, const Eigen::VectorXd& v, Eigen::VectorXd& a) {
       sys_.beam.evaluate_dynamics(q, v, *ws_);
       tip_kinematics(sys_.beam, sys_.surface, tt, q, v, tip_);
-      contact_load(sys_.law.friction, tip_, v, lambda_pred_, s.slip, force_);
+      contact_load(sys_.law.friction(), tip_, v, lambda_pred_, s.episode.slip, force_);
       a = force_ - ws_->psi;
       ws_->mass_llt.solveInPlace(a);
     };
@@ -215,7 +219,7 @@ private:
   }
 
   StepOutcome contact_step(FilamentState& s, double t_stop) {
-    const FrictionModel& friction = sys_.law.friction;
+    const FrictionModel& friction = sys_.law.friction();
     const double h = std::min(
         (std::abs(lambda_prev_) > 0.0 && std::abs(lambda_prev_) < opt_.fine_below_n) ? opt_.fine_contact_step_s
                                                                                       : opt_.contact_step_s,
@@ -237,7 +241,7 @@ private:
       // λ_n from h a λ + h b|λ| = h∇CᵀM⁻¹Ψ − ∇Cᵀu_{n−1} − ∂C/∂t  (4-116).
       sys_.beam.evaluate_dynamics(xn_, up_, *ws_);
       tip_kinematics(sys_.beam, sys_.surface, tn, xn_, up_, tip_);
-      friction_direction(friction, tip_, s.slip, qstar_);
+      friction_direction(friction, tip_, s.episode.slip, qstar_);
       minv_ = tip_.grad_gap;
       ws_->mass_llt.solveInPlace(minv_);
       const double a = h * tip_.grad_gap.dot(minv_);
@@ -249,7 +253,7 @@ private:
         return failed(FailureKind::painleve, s.t, detail::painleve_message(a / h, b / h, c / h));
       lambda_n = sol.lambda;
       // u_n = u_{n−1} + h M⁻¹(−Ψ + λ∇C + |λ|Q*)  (4-115).
-      contact_load(friction, tip_, up_, lambda_n, s.slip, force_);
+      contact_load(friction, tip_, up_, lambda_n, s.episode.slip, force_);
       force_ -= ws_->psi;
       ws_->mass_llt.solveInPlace(force_);
       un_ = s.qd + h * force_;
@@ -270,9 +274,9 @@ private:
     StepOutcome out;
     if (lambda_n <= 0.0) {
       tip_kinematics(sys_.beam, sys_.surface, tn, xn_, un_, tip_);
-      out.load = contact_load(friction, tip_, un_, lambda_n, s.slip, force_);
+      out.load = contact_load(friction, tip_, un_, lambda_n, s.episode.slip, force_);
       out.integrals = trapezoid(load_prev_, out.load, tn - s.t);
-      out.integrals.damping_work = contact_damping_work(s.qd, un_, tn - s.t);
+      out.integrals.integral[LedgerTerm::damping_work] = contact_damping_work(s.qd, un_, tn - s.t);
       s.q = xn_;
       s.qd = un_;
       s.t = tn;
@@ -287,12 +291,13 @@ private:
     out.integrals = trapezoid(load_prev_, ContactLoad{}, ts - s.t);
     x2_ = s.q + f * (xn_ - s.q);
     un_ = s.qd + f * (un_ - s.qd);
-    out.integrals.damping_work = contact_damping_work(s.qd, un_, ts - s.t);
+    out.integrals.integral[LedgerTerm::damping_work] = contact_damping_work(s.qd, un_, ts - s.t);
     s.q = x2_;
     s.qd = un_;
     s.t = ts;
     out.status = StepStatus::root;
-    out.root = Root::multiplier_vanishes;
+    out.root = Root::contact;
+    out.contact_root = 0;  // the rigid law's λ = 0
     return out;
   }
 

@@ -2,7 +2,9 @@
 
 #include "rotbeam/atomic_file.hpp"
 #include "rotbeam/folder_lock.hpp"
+#include "rotbeam/ledger_output.hpp"
 #include "rotbeam/pass_output.hpp"
+#include "rotbeam/units.hpp"
 
 #include <charconv>
 #include <cmath>
@@ -75,7 +77,7 @@ std::string filaments_csv(const BrushResult& result) {
     out += ',' + std::to_string(d.period_revolutions) + ',' + std::to_string(d.revolutions_run);
     for (double v : {d.mean_normal_force_n, d.mean_tangential_force_n, d.mean_hub_torque_n_m, d.mean_hub_power_w,
                      d.impacts_per_revolution, d.contact_time_s, d.peak_normal_force_n, d.max_tip_deflection_ratio,
-                     d.first_contact_deg, d.last_contact_deg, d.ledger_residual_j}) {
+                     d.first_contact_deg, d.last_contact_deg, d.ledger_residual_max_j}) {
       out += ',';
       put(out, v);
     }
@@ -107,14 +109,10 @@ nlohmann::json brush_summary_json(const BrushResult& result, const Config& confi
                        {"to_deg", number_or_null(s.contact_zone_to_deg)},
                        {"angle_deg", s.contact_zone_deg},
                        {"width_m", s.contact_zone_width_m}};
-  j["ledger_per_revolution"] = {{"hub_work_j", s.hub_work_j},
-                                {"friction_work_j", s.friction_work_j},
-                                {"surface_work_j", s.surface_work_j},
-                                {"damping_work_j", s.damping_work_j},
-                                {"impact_loss_j", s.impact_loss_j},
-                                {"contact_dissipation_j", s.contact_dissipation_j},
-                                {"energy_change_j", s.energy_change_j},
-                                {"residual_j", s.ledger_residual_j}};
+  nlohmann::json ledger = {{"energy_change_j", s.ledger.energy_change_j}, {"residual_j", s.ledger_residual_max_j}};
+  put_ledger_terms(ledger, s.ledger);
+  j["ledger_per_revolution"] = ledger;
+  j["ledger_terms"] = ledger_terms_json();
   j["dimensionless"] = {
       {"depth_ratio", s.depth_ratio},
       {"speed_ratio", s.speed_ratio},
@@ -171,7 +169,7 @@ BrushFiles::BrushFiles(const std::filesystem::path& dir) : dir_(dir) {
 BrushFiles::~BrushFiles() = default;
 
 void BrushFiles::commit(const BrushResult& result, const Config& config) {
-  const double omega = config.beam.speed_rpm * M_PI / 30.0;
+  const double omega = rad_per_s_from_rpm(config.beam.speed_rpm);
   const std::string workpiece = workpiece_csv(result, omega);
   const std::string profile = profile_csv(result, omega);
   const std::string filaments = filaments_csv(result);

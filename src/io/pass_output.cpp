@@ -3,6 +3,7 @@
 #include "rotbeam/atomic_file.hpp"
 #include "rotbeam/detail/csv.hpp"
 #include "rotbeam/folder_lock.hpp"
+#include "rotbeam/ledger_output.hpp"
 
 #include <cerrno>
 #include <charconv>
@@ -121,10 +122,10 @@ std::string force_bins_csv(const PassResult& result) {
 
 std::string revolutions_header(int n) {
   std::string h =
-      "revolution,complete,t_start_s,t_end_s,impacts,contact_episodes,first_impact_deg,last_separation_deg,"
-      "normal_impulse_n_s,friction_work_j,surface_work_j,damping_work_j,impact_loss_j,hub_work_j,energy_change_j,"
-      "mean_hub_torque_n_m,mean_hub_power_w,max_tip_deflection_ratio,section_distance,contact_time_s,"
-      "peak_normal_force_n,ledger_residual_j,contact_dissipation_j";
+      "revolution,complete,t_start_s,t_end_s,impacts,contact_episodes,first_impact_deg,last_separation_deg," +
+      ledger_csv_header() +
+      ",energy_change_j,ledger_residual_j,mean_hub_torque_n_m,mean_hub_power_w,max_tip_deflection_ratio,"
+      "section_distance,contact_time_s,peak_normal_force_n";
   for (int i = 1; i <= n; ++i) h += ",q" + std::to_string(i) + "_m";
   for (int i = 1; i <= n; ++i) h += ",qd" + std::to_string(i) + "_m_s";
   return h;
@@ -138,10 +139,17 @@ void append_revolution_line(std::string& out, const RevolutionRecord& r) {
     put(out, v);
   }
   out += ',' + std::to_string(r.impacts) + ',' + std::to_string(r.contact_episodes);
-  for (double v : {r.first_impact_deg, r.last_separation_deg, r.normal_impulse_n_s, r.friction_work_j, r.surface_work_j, r.damping_work_j,
-                   r.impact_loss_j, r.hub_work_j, r.energy_change_j, r.mean_hub_torque_n_m, r.mean_hub_power_w,
-                   r.max_tip_deflection_ratio, r.section_distance, r.contact_time_s, r.peak_normal_force_n,
-                   r.ledger_residual_j, r.contact_dissipation_j}) {
+  for (double v : {r.first_impact_deg, r.last_separation_deg}) {
+    out += ',';
+    put(out, v);
+  }
+  for (const LedgerTermInfo& info : kLedgerTerms)
+    if (info.report != LedgerReport::internal) {
+      out += ',';
+      put(out, r.ledger[info.term]);
+    }
+  for (double v : {r.ledger.energy_change_j, r.ledger.residual(), r.mean_hub_torque_n_m, r.mean_hub_power_w,
+                   r.max_tip_deflection_ratio, r.section_distance, r.contact_time_s, r.peak_normal_force_n}) {
     out += ',';
     put(out, v);
   }
@@ -171,19 +179,15 @@ nlohmann::json summary_json(const PassResult& result, const Config& config, cons
   j["contact_time_s"] = s.contact_time_s;
   j["peak_normal_force_n"] = s.peak_normal_force_n;
   j["mean_normal_force_n"] = s.mean_normal_force_n;
-  j["normal_impulse_n_s"] = s.normal_impulse_n_s;
   j["binned_force"] = {{"bin_deg", s.binned_force.bin_deg},
                        {"peak_normal_force_n", s.binned_force.peak_normal_force_n},
                        {"peak_tangential_force_n", s.binned_force.peak_tangential_force_n},
                        {"peak_normal_at_deg", number_or_null(s.binned_force.peak_normal_at_deg)}};
-  j["friction_work_j"] = s.friction_work_j;
-  j["surface_work_j"] = s.surface_work_j;
-  j["damping_work_j"] = s.damping_work_j;
-  j["hub_work_j"] = s.hub_work_j;
+  put_ledger_terms(j, s.ledger);
   j["hub_impulsive_work_j"] = s.hub_impulsive_work_j;
-  j["impact_loss_j"] = s.impact_loss_j;
-  j["contact_dissipation_j"] = s.contact_dissipation_j;
-  j["energy_change_j"] = s.energy_change_j;
+  j["energy_change_j"] = s.ledger.energy_change_j;
+  j["ledger_residual_j"] = s.ledger.residual();
+  j["ledger_terms"] = ledger_terms_json();
   j["max_tip_deflection_ratio"] = s.max_tip_deflection_ratio;
   j["validity"] = validity_name(s.validity);
   j["energy_audit_residual"] = s.energy_audit_residual;
@@ -199,20 +203,16 @@ nlohmann::json summary_json(const PassResult& result, const Config& config, cons
   // map or a brush reads per revolution.
   if (s.last_revolution) {
     const RevolutionRecord& r = *s.last_revolution;
-    j["last_revolution"] = {{"revolution", r.revolution},
-                            {"impacts", r.impacts},
-                            {"contact_episodes", r.contact_episodes},
-                            {"contact_time_s", r.contact_time_s},
-                            {"peak_normal_force_n", r.peak_normal_force_n},
-                            {"normal_impulse_n_s", r.normal_impulse_n_s},
-                            {"friction_work_j", r.friction_work_j},
-                            {"surface_work_j", r.surface_work_j},
-                            {"damping_work_j", r.damping_work_j},
-                            {"impact_loss_j", r.impact_loss_j},
-                            {"contact_dissipation_j", r.contact_dissipation_j},
-                            {"hub_work_j", r.hub_work_j},
-                            {"max_tip_deflection_ratio", r.max_tip_deflection_ratio},
-                            {"ledger_residual_j", r.ledger_residual_j}};
+    nlohmann::json last = {{"revolution", r.revolution},
+                           {"impacts", r.impacts},
+                           {"contact_episodes", r.contact_episodes},
+                           {"contact_time_s", r.contact_time_s},
+                           {"peak_normal_force_n", r.peak_normal_force_n},
+                           {"max_tip_deflection_ratio", r.max_tip_deflection_ratio},
+                           {"energy_change_j", r.ledger.energy_change_j},
+                           {"ledger_residual_j", r.ledger.residual()}};
+    put_ledger_terms(last, r.ledger);
+    j["last_revolution"] = last;
   } else {
     j["last_revolution"] = nullptr;
   }

@@ -1,4 +1,5 @@
 #include "rotbeam/elastica_beam.hpp"
+#include "rotbeam/units.hpp"
 
 #include "rotbeam/modal_analysis.hpp"
 #include "rotbeam/quadrature.hpp"
@@ -272,7 +273,7 @@ ElasticaBeam make_elastica(const BeamParameters& p, double theta0_rad, int panel
   b.n = p.modes;
   b.length = p.length_m;
   b.hub_radius = p.hub_radius_m;
-  b.omega = p.speed_rpm * M_PI / 30.0;
+  b.omega = rad_per_s_from_rpm(p.speed_rpm);
   b.theta0 = theta0_rad;
   b.centrifugal = p.centrifugal;
   b.coriolis = p.coriolis;

@@ -1,4 +1,5 @@
 #include "rotbeam/foreshortening_beam.hpp"
+#include "rotbeam/units.hpp"
 
 #include "rotbeam/dynamics.hpp"
 #include "rotbeam/energy.hpp"
@@ -141,7 +142,7 @@ ForeshorteningBeam make_beam(const BeamParameters& p, double theta0_rad) {
   m.n = p.modes;
   m.length = p.length_m;
   m.hub_radius = p.hub_radius_m;
-  m.omega = p.speed_rpm * M_PI / 30.0;
+  m.omega = rad_per_s_from_rpm(p.speed_rpm);
   m.theta0 = theta0_rad;
   m.centrifugal = p.centrifugal;
   m.coriolis = p.coriolis;

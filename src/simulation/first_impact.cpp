@@ -1,5 +1,9 @@
 #include "rotbeam/first_impact.hpp"
 
+#include "rotbeam/contact_law.hpp"
+#include "rotbeam/stepper.hpp"
+#include "rotbeam/surface.hpp"
+
 #include "rotbeam/detail/progress_clock.hpp"
 
 #include <cmath>
@@ -76,8 +80,8 @@ FirstImpactResult first_impact(const System& system, const InitialConditions& in
   r.qd_after = s.qd;
   const std::unique_ptr<BeamWorkspace> ws = beam.make_workspace();
   TipKinematics tip(n);
-  r.impact = apply_impact(beam, system.surface, system.law.impact, r.t, r.q, r.qd_after, *ws, tip,
-                          system.law.friction.mu);
+  r.impact = apply_impact(beam, system.surface, system.law.impact_law(), r.t, r.q, r.qd_after, *ws, tip,
+                          system.law.friction().mu);
   if (r.impact.jammed) {
     r.found = false;
     r.failure = NumericalFailure{FailureKind::painleve, r.t, r.theta,

@@ -1,6 +1,5 @@
 #include "pass_driver.hpp"
 
-#include "rotbeam/rigid_contact.hpp"
 #include "rotbeam/detail/diagnostics.hpp"
 
 #include <chrono>
@@ -26,8 +25,7 @@ PassDriver::PassDriver(const System& system, const PassOptions& options, Stepper
       ws_(system.beam.make_workspace()),
       tip_(system.beam.modes()),
       state_(system.beam.modes()),
-      qd_before_(system.beam.modes()),
-      force_(system.beam.modes()),
+      scratch_(system.beam.modes()),
       on_progress_(control.on_progress) {
   t_end_ = system.beam.time_at(options.end_angle_deg * M_PI / 180.0);
   if (options.revolutions > 0) {
@@ -56,7 +54,7 @@ void PassDriver::run(const InitialConditions& ic) {
   const int n = system_.beam.modes();
   state_.t = 0.0;
   state_.phase = Phase::free;
-  state_.slip = 0.0;
+  state_.episode = {};
   if (ic.rigid_start) {
     state_.q.setZero();
     state_.qd.setZero();
@@ -68,7 +66,7 @@ void PassDriver::run(const InitialConditions& ic) {
   }
   rec_.start(state_.t, state_.q, state_.qd);
   if (gap(system_.beam, system_.surface, state_.t, state_.q) >= 0.0) {
-    fail(FailureKind::initial_state, state_.t, "the initial shape already touches the surface (C(0) >= 0)", Phase::free);
+    fail_at(FailureKind::initial_state, state_.t, "the initial shape already touches the surface (C(0) >= 0)", Phase::free);
     return;
   }
   if (ic.rigid_start) {
@@ -80,10 +78,7 @@ void PassDriver::run(const InitialConditions& ic) {
       flexible_from_t_ = t_star;  // the rigid turn costs nothing: progress counts from here
       rec_.rigid_turn(t_star);
       rec_.accept(state_.t, state_.q, state_.qd, Phase::free, {}, {}, true);
-      if (compliant_)
-        compliant_contact();
-      else
-        impact();
+      system_.law.touch(*this);
       if (done_) return;
       loop();
       return;
@@ -104,8 +99,8 @@ bool PassDriver::cross_section() {
 void PassDriver::loop() {
   while (!done_) {
     if (instant_transitions_ > kMaxInstantTransitions) {
-      fail(FailureKind::chatter, state_.t, "the tip switches between contact and free flight without time advancing",
-           state_.phase);
+      fail_at(FailureKind::chatter, state_.t, "the tip switches between contact and free flight without time advancing",
+              state_.phase);
       return;
     }
     if (state_.phase == Phase::free)
@@ -119,12 +114,12 @@ void PassDriver::free_flight() {
   const double t_enter = state_.t;
   while (state_.t < t_end_) {
     const StepOutcome o = stepper_.step(state_, stop_time());
-    if (o.status == StepStatus::failed) return fail(o.failure->kind, o.failure->t, o.failure->message, Phase::free);
+    if (o.status == StepStatus::failed) return fail_at(o.failure->kind, o.failure->t, o.failure->message, Phase::free);
     rec_.free_rows_within(state_.t, state_.q, stepper_);
-    if (o.status == StepStatus::root) {  // the gap closed: a touch
+    if (o.status == StepStatus::root) {  // the gap closed: a touch, which the contact law resolves
       instant_transitions_ = (state_.t - t_enter < kInstant) ? instant_transitions_ + 1 : 0;
       rec_.accept(state_.t, state_.q, state_.qd, Phase::free, {}, o.integrals, true);
-      touch();
+      system_.law.touch(*this);
       return;
     }
     const bool section = state_.t >= next_section_;
@@ -160,77 +155,44 @@ bool PassDriver::clear_for_the_rest() {
   return true;
 }
 
-void PassDriver::touch() {
-  if (compliant_) return compliant_contact();
-  tip_kinematics(system_.beam, system_.surface, state_.t, state_.q, state_.qd, tip_);
-  if (tip_.gap_rate > 0.0)
-    impact();
+bool PassDriver::impacts_exhausted() {
+  if (!rec_.impacts_exhausted(state_.t)) return false;
+  finish(Phase::free);
+  return true;
+}
+
+void PassDriver::impact(const Eigen::VectorXd& qd_before, const ImpactResult& r) {
+  rec_.impact(state_.t, state_.q, qd_before, state_.qd, r);
+}
+
+void PassDriver::rebound() {
+  state_.phase = Phase::free;
+  stepper_.begin_free(state_, FreeStart::rebound);
+}
+
+void PassDriver::enter_contact(const ContactLoad& load, const std::string& why, bool first_touch) {
+  if (first_touch)
+    rec_.compliant_touch(state_.t, state_.q, state_.qd, load, why);
   else
-    begin_contact("touch without approach speed");
+    rec_.contact_start(state_.t, state_.q, state_.qd, load, why);
+  stepper_.begin_contact(state_);
 }
 
-void PassDriver::impact() {
-  if (rec_.impacts_exhausted(state_.t)) return finish(Phase::free);
-  qd_before_ = state_.qd;
-  const ImpactResult r = apply_impact(system_.beam, system_.surface, system_.law.impact, state_.t, state_.q, state_.qd,
-                                      *ws_, tip_, system_.law.friction.mu);
-  if (r.jammed)
-    return fail(FailureKind::painleve, state_.t,
-                "the frictional impact jams: sliding drives the tip into the surface and the normal approach never "
-                "ends (Painlevé's paradox of impacts; impact.friction = \"none\" keeps the thesis's frictionless impact)",
-                Phase::free);
-  rec_.impact(state_.t, state_.q, qd_before_, state_.qd, r);
-  if (rebounds(r)) {
-    state_.phase = Phase::free;
-    stepper_.begin_free(state_, FreeStart::rebound);
-    return;
-  }
-  begin_contact(r.restitution == 0.0 ? "after a plastic impact" : "after an impact");
+void PassDriver::lift_off(const std::string& why) {
+  rec_.event(EventKind::lift_off, state_.t, state_.q, why);
+  ++instant_transitions_;
+  separate();
 }
 
-void PassDriver::begin_contact(const std::string& why) {
-  const FrictionModel& friction = system_.law.friction;
-  system_.beam.evaluate_dynamics(state_.q, state_.qd, *ws_);
-  tip_kinematics(system_.beam, system_.surface, state_.t, state_.q, state_.qd, tip_);
-  const SlipDecision slip = decide_slip(system_.beam, friction, tip_, *ws_);
-  if (slip.kind == SlipDecision::Kind::stick)
-    return fail(FailureKind::stick, state_.t, detail::stick_message(slip, effective_friction(friction, tip_)),
-                Phase::stick);
-  if (slip.kind == SlipDecision::Kind::separate) {
-    rec_.event(EventKind::lift_off, state_.t, state_.q, detail::lift_off_message(slip.stick_normal));
-    ++instant_transitions_;
-    return separate();
-  }
-  state_.slip = slip.direction;
-  const AccelerationMultiplier am = acceleration_multiplier(system_.beam, system_.surface, friction, state_.t, state_.q,
-                                                            state_.qd, state_.slip, *ws_, tip_);
-  if (am.solution.status != MultiplierSolution::Status::unique)
-    return fail(FailureKind::painleve, state_.t, detail::painleve_message(am.a, am.b, am.c), Phase::contact);
-  if (am.solution.lambda > 0.0 && traits_.lifts_off_on_positive_multiplier) {
-    rec_.event(EventKind::lift_off, state_.t, state_.q,
-               "λ = " + short_number(am.solution.lambda) + " N > 0 at the touch: no sustained contact");
-    ++instant_transitions_;
-    return separate();
-  }
-  rec_.contact_start(state_.t, state_.q, state_.qd,
-                     contact_load(friction, tip_, state_.qd, std::min(am.solution.lambda, 0.0), state_.slip, force_), why);
-  state_.phase = Phase::contact;
-  stepper_.begin_contact(state_, am.solution.lambda);
+void PassDriver::end_contact(const std::string& why) {
+  rec_.contact_end(state_.t, state_.q, state_.qd, why);
+  separate();
 }
 
-void PassDriver::compliant_contact() {
-  tip_kinematics(system_.beam, system_.surface, state_.t, state_.q, state_.qd, tip_);
-  const double v0 = tip_.gap_rate;
-  const double full = std::hypot(tip_.VX - tip_.surface_vx, tip_.VY - tip_.surface_vy);
-  const double damping = hertz_damping(system_.law, v0, full);
-  state_.slip = regularized_slip(tip_.slip_speed, system_.law.hertz.friction_regularization_m_s);
-  ContactLoad zero;
-  zero.slip = state_.slip;
-  rec_.compliant_touch(state_.t, state_.q, state_.qd, zero,
-                       "compliant contact: approach speed " + short_number(v0) + " m/s, Hunt–Crossley c = " +
-                           short_number(damping) + " s/m");
-  state_.phase = Phase::contact;
-  stepper_.begin_compliant_contact(state_, damping);
+void PassDriver::event(EventKind kind, const std::string& detail) { rec_.event(kind, state_.t, state_.q, detail); }
+
+void PassDriver::fail(FailureKind kind, const std::string& message, Phase phase) {
+  fail_at(kind, state_.t, message, phase);
 }
 
 void PassDriver::separate() {
@@ -238,67 +200,37 @@ void PassDriver::separate() {
   stepper_.begin_free(state_, FreeStart::separation);
 }
 
-bool PassDriver::check_slip() {
-  const FrictionModel& friction = system_.law.friction;
-  system_.beam.evaluate_dynamics(state_.q, state_.qd, *ws_);
-  tip_kinematics(system_.beam, system_.surface, state_.t, state_.q, state_.qd, tip_);
-  const SlipDecision slip = decide_slip(system_.beam, friction, tip_, *ws_);
-  if (slip.kind == SlipDecision::Kind::stick) {
-    fail(FailureKind::stick, state_.t, detail::stick_message(slip, effective_friction(friction, tip_)), Phase::stick);
-    return false;
-  }
-  if (slip.kind == SlipDecision::Kind::slip) {
-    if (state_.slip != 0.0 && slip.direction != state_.slip)
-      rec_.event(EventKind::slip_reversal, state_.t, state_.q, detail::slip_reversal_message(slip.direction));
-    state_.slip = slip.direction;
-  }
-  return true;
-}
-
 void PassDriver::contact() {
-  const FrictionModel& friction = system_.law.friction;
   const double t_enter = state_.t;
+  const ContactLaw& law = system_.law;
   while (state_.t < t_end_) {
-    if (!traits_.locates_slip_stops && !check_slip()) return;
+    if (!traits_.locates_contact_roots && !law.before_step(*this)) return;
     const StepOutcome o = stepper_.step(state_, stop_time());
-    if (o.status == StepStatus::failed) return fail(o.failure->kind, o.failure->t, o.failure->message, Phase::contact);
-    if (o.root == Root::multiplier_vanishes || o.root == Root::gap_opens) {  // separation
-      ContactLoad zero;  // no force at λ = 0 (or δ = 0); the slip of the step, for the friction's impulse over it
-      zero.slip = state_.slip;
-      rec_.accept(state_.t, state_.q, state_.qd, Phase::contact, zero, o.integrals, true);
-      rec_.contact_end(state_.t, state_.q, state_.qd,
-                       o.root == Root::gap_opens ? "the gap opened (δ = 0)" : "λ reached 0");
+    if (o.status == StepStatus::failed) return fail_at(o.failure->kind, o.failure->t, o.failure->message, state_.phase);
+    const ContactRoot* root = o.root == Root::contact ? &law.roots(state_.phase)[o.contact_root] : nullptr;
+    if (root && root->ends_contact) {  // separation
+      ContactLoad zero;  // no force at the contact's end; the slip of the step
+      zero.slip = state_.episode.slip;
+      rec_.accept(state_.t, state_.q, state_.qd, state_.phase, zero, o.integrals, true);
+      rec_.contact_end(state_.t, state_.q, state_.qd, root->end_detail);
       instant_transitions_ = (state_.t - t_enter < kInstant) ? instant_transitions_ + 1 : 0;
       return separate();
     }
     const bool section = state_.t >= next_section_;
-    rec_.accept(state_.t, state_.q, state_.qd, Phase::contact, o.load, o.integrals,
-                o.root == Root::slip_stops || section);
-    if (o.root == Root::slip_stops) {
-      // V_t = 0: the velocity has no sign to give; the locked-tip analysis decides (SPEC §4).
-      system_.beam.evaluate_dynamics(state_.q, state_.qd, *ws_);
-      tip_kinematics(system_.beam, system_.surface, state_.t, state_.q, state_.qd, tip_);
-      const SlipDecision d = decide_slip_at_rest(friction, tip_, *ws_);
-      if (d.kind == SlipDecision::Kind::stick)
-        return fail(FailureKind::stick, state_.t, detail::stick_message(d, effective_friction(friction, tip_)),
-                    Phase::stick);
-      if (d.kind == SlipDecision::Kind::separate) {
-        rec_.contact_end(state_.t, state_.q, state_.qd, "the tip stopped sliding and lifts off");
-        return separate();
-      }
-      if (d.direction != state_.slip)
-        rec_.event(EventKind::slip_reversal, state_.t, state_.q, detail::slip_reversal_message(d.direction));
-      state_.slip = d.direction;
+    rec_.accept(state_.t, state_.q, state_.qd, state_.phase, o.load, o.integrals, root || section);
+    if (root) {
+      law.root(*this, o.contact_root);
+      if (done_ || state_.phase == Phase::free) return;
     }
     instant_transitions_ = 0;
     if (section && cross_section()) break;
     report_progress();
     if (rec_.stop_requested(state_.t)) break;
   }
-  finish(Phase::contact);
+  finish(state_.phase);
 }
 
-void PassDriver::fail(FailureKind kind, double t, const std::string& message, Phase phase) {
+void PassDriver::fail_at(FailureKind kind, double t, const std::string& message, Phase phase) {
   rec_.fail(kind, t, message);
   finish(phase);
 }

@@ -1,43 +1,54 @@
-// The pass driver (SPEC §4–§6): the phase logic of a pass, written once over the steppers'
-// contract (stepper.hpp). free flight → (touch) impact or contact → (λ = 0) separation, with the
-// slip decisions (stick, lift-off, slip reversal), Painlevé's paradox, the Zeno floor and the
-// chatter guard. The scheme only advances the state of a phase and reports the roots it crosses.
+// The pass driver (SPEC §4–§6): the phase logic of a pass, written once over the steppers' contract
+// (stepper.hpp) and the contact law's (contact_law.hpp). Free flight until the gap closes; then the
+// law decides (an impact, a contact phase, a lift-off) and the driver carries it out (PhaseControl);
+// a contact phase until one of its roots: the law's end of contact returns to free flight, its other
+// roots are the law's to decide. The driver keeps the revolutions' sections, the Zeno floor, the
+// chatter guard, the early end and stop requests. The scheme only advances the state of a phase and
+// reports the roots it crosses.
 #pragma once
 
 #include "pass_recorder.hpp"
 
 #include "rotbeam/detail/progress_clock.hpp"
+#include "rotbeam/contact_law.hpp"
 #include "rotbeam/pass.hpp"
+#include "rotbeam/stepper.hpp"
 
 #include <cmath>
 
 namespace rotbeam {
 
-class PassDriver {
+class PassDriver final : public PhaseControl {
 public:
   PassDriver(const System& system, const PassOptions& options, Stepper& stepper, PassRecorder& recorder,
              const PassControl& control);
   /// Runs the pass from `initial` to the end angle or a diagnosed failure.
   void run(const InitialConditions& initial);
 
+  // PhaseControl: what the contact law's transitions do (contact_law.hpp).
+  const System& system() const override { return system_; }
+  FilamentState& state() override { return state_; }
+  BeamWorkspace& workspace() override { return *ws_; }
+  TipKinematics& tip() override { return tip_; }
+  Eigen::VectorXd& scratch() override { return scratch_; }
+  bool lifts_off_on_positive_multiplier() const override { return traits_.lifts_off_on_positive_multiplier; }
+  bool impacts_exhausted() override;
+  void impact(const Eigen::VectorXd& qd_before, const ImpactResult& result) override;
+  void rebound() override;
+  void enter_contact(const ContactLoad& load, const std::string& why, bool first_touch) override;
+  void lift_off(const std::string& why) override;
+  void end_contact(const std::string& why) override;
+  void event(EventKind kind, const std::string& detail) override;
+  void fail(FailureKind kind, const std::string& message, Phase phase) override;
+
 private:
   void loop();
   void free_flight();
   void contact();
-  // A touch at the current state: an impact for an approaching tip, else a grazing contact start.
-  void touch();
-  // Momentum-balance impact at the current state; chooses the next phase.
-  void impact();
-  // Enters sustained contact at the current state (C = Ċ = 0) if the slip analysis allows it.
-  void begin_contact(const std::string& why);
-  // A compliant (Hertz) contact begins at the current state (C = 0): its damping from the approach
-  // speed, a contact_start event, then the stepper's compliant phase (SPEC §11).
-  void compliant_contact();
   // Free flight from the current state after a separation or lift-off.
   void separate();
-  void fail(FailureKind kind, double t, const std::string& message, Phase phase);
+  void fail_at(FailureKind kind, double t, const std::string& message, Phase phase);
   void finish(Phase phase);
-  bool check_slip();
   void report_progress();
   // The end of the current stepper call: the end of the run or the next revolution's section.
   double stop_time() const { return std::min(t_end_, next_section_); }
@@ -56,7 +67,7 @@ private:
   std::unique_ptr<BeamWorkspace> ws_;
   TipKinematics tip_;
   FilamentState state_;
-  Eigen::VectorXd qd_before_, force_;
+  Eigen::VectorXd scratch_;
   double t_end_ = 0;
   double period_ = INFINITY;        // one revolution [s] (runs over many)
   double next_section_ = INFINITY;  // the next interior section [s]
@@ -67,7 +78,6 @@ private:
   detail::ProgressClock progress_clock_;
   double flexible_from_t_ = 0.0;  // where the integration of the flexible motion began [s]
   double next_clear_check_t_ = 0.0;  // simulation.end_when_clear: the next check [s]
-  const bool compliant_ = system_.law.model == ContactModel::hertz;  // contact.model = "hertz"
 };
 
 }  // namespace rotbeam

@@ -17,15 +17,6 @@ constexpr double kReachCheckRatio = 0.3;
 double next_grid_time(double t, double h) { return h * (std::floor(t / h + 1e-9) + 1.0); }
 }  // namespace
 
-const char* phase_name(Phase p) {
-  switch (p) {
-    case Phase::free: return "free";
-    case Phase::contact: return "contact";
-    case Phase::stick: return "stick";
-  }
-  return "?";
-}
-
 PassRecorder::PassRecorder(const System& system, const PassOptions& options, const PassControl& control,
                            PassResult& result)
     : system_(system),
@@ -77,7 +68,7 @@ double PassRecorder::hub_torque(const Eigen::VectorXd& q, const Eigen::VectorXd&
   // τ = dH_z/dt − (X_t F_Y − Y_t F_X): the hub's torque is the rate of the filament's angular momentum
   // less the moment of the contact force (SPEC §7); dH_z/dt in closed form from q̈ = M⁻¹(Q − Ψ).
   // `tip_` holds the kinematics at (t, q, q̇).
-  const ContactLoad l = contact_load(system_.law.friction, tip_, qd, load.lambda, load.slip, generalized_force_);
+  const ContactLoad l = contact_load(system_.law.friction(), tip_, qd, load.lambda, load.slip, generalized_force_);
   acceleration(system_.beam, q, qd, l.lambda != 0.0 ? &generalized_force_ : nullptr, *ws_, qdd_);
   const double dh = system_.beam.angular_momentum_rate(q, qd, qdd_, *ws_);
   return dh - (tip_.X * l.force_y - tip_.Y * l.force_x);
@@ -288,15 +279,8 @@ void PassRecorder::open_revolution(double t, const Eigen::VectorXd& q, const Eig
   revolution_open_ = true;
   mark_.t = t;
   mark_.energy = e.kinetic + e.potential + contact_energy(t, q);
-  mark_.contact_dissipation = s.contact_dissipation_j;
   mark_.momentum = e.angular_momentum;
-  mark_.contact_moment = contact_moment_;
-  mark_.impulse_moment = impulse_moment_;
-  mark_.friction = s.friction_work_j;
-  mark_.surface = s.surface_work_j;
-  mark_.damping = s.damping_work_j;
-  mark_.impact_loss = s.impact_loss_j;
-  mark_.normal_impulse = s.normal_impulse_n_s + normal_time_integral_;
+  mark_.ledger = s.ledger;
   mark_.contact_time = s.contact_time_s;
   mark_.impacts = s.impacts;
   mark_.episodes = s.contact_episodes;
@@ -326,24 +310,17 @@ bool PassRecorder::close_revolution(double t, const Eigen::VectorXd& q, const Ei
   r.contact_episodes = s.contact_episodes - mark_.episodes;
   r.first_impact_deg = rev_first_impact_deg_;
   r.last_separation_deg = rev_last_separation_deg_;
-  r.normal_impulse_n_s = s.normal_impulse_n_s + normal_time_integral_ - mark_.normal_impulse;
-  r.friction_work_j = s.friction_work_j - mark_.friction;
-  r.surface_work_j = s.surface_work_j - mark_.surface;
-  r.damping_work_j = s.damping_work_j - mark_.damping;
-  r.impact_loss_j = s.impact_loss_j - mark_.impact_loss;
-  r.hub_work_j = omega * (e.angular_momentum - mark_.momentum - (contact_moment_ - mark_.contact_moment) -
-                          (impulse_moment_ - mark_.impulse_moment));
-  r.contact_dissipation_j = s.contact_dissipation_j - mark_.contact_dissipation;
-  r.energy_change_j = e.kinetic + e.potential + contact_energy(t, q) - mark_.energy;
+  static_cast<LedgerValues&>(r.ledger) = s.ledger - mark_.ledger;
+  const double moment = s.ledger[LedgerTerm::contact_moment] - mark_.ledger[LedgerTerm::contact_moment];
+  r.ledger[LedgerTerm::hub_work] = omega * (e.angular_momentum - mark_.momentum - moment);
+  r.ledger.energy_change_j = e.kinetic + e.potential + contact_energy(t, q) - mark_.energy;
   const double dt = t - mark_.t;
-  r.mean_hub_torque_n_m = dt > 0.0 ? r.hub_work_j / (omega * dt) : 0.0;
-  r.mean_hub_power_w = dt > 0.0 ? r.hub_work_j / dt : 0.0;
+  const double hub_work = r.ledger[LedgerTerm::hub_work];
+  r.mean_hub_torque_n_m = dt > 0.0 ? hub_work / (omega * dt) : 0.0;
+  r.mean_hub_power_w = dt > 0.0 ? hub_work / dt : 0.0;
   r.max_tip_deflection_ratio = rev_max_ratio_;
   r.contact_time_s = s.contact_time_s - mark_.contact_time;
   r.peak_normal_force_n = rev_peak_force_;
-  r.ledger_residual_j =
-      r.hub_work_j + r.friction_work_j + r.surface_work_j + r.damping_work_j + r.impact_loss_j + r.contact_dissipation_j -
-      r.energy_change_j;
   r.q = q;
   r.qd = qd;
   bool steady = false;
@@ -409,7 +386,7 @@ bool PassRecorder::end_revolution(double t, const Eigen::VectorXd& q, const Eige
 void PassRecorder::accept(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Phase phase,
                           const ContactLoad& load, const StepIntegrals& in, bool force_sample) {
   PassSummary& s = result_.summary;
-  s.damping_work_j += in.damping_work;
+  s.ledger += in.integral;
   if (deliveries_) {
     // The hub's angular impulse over the step: ΔH_z less the contact force's angular impulse.
     const double h = system_.beam.energy(q, qd, *ws_).angular_momentum;
@@ -418,29 +395,21 @@ void PassRecorder::accept(double t, const Eigen::VectorXd& q, const Eigen::Vecto
     d.span_deg = system_.beam.hub_motion().omega * (t - last_t_) * 180.0 / M_PI;
     d.hub_angular_impulse_n_m_s = h - last_h_;
     if (phase != Phase::free) {
-      if (load.slip != 0.0) contact_slip_ = load.slip;
-      d.normal_n_s = in.normal_impulse;
-      d.tangential_n_s = system_.law.friction.mu * contact_slip_ * in.normal_impulse;
-      d.hub_angular_impulse_n_m_s -= in.contact_moment;
+      d.normal_n_s = in.integral[LedgerTerm::normal_impulse];
+      d.tangential_n_s = -in.integral[LedgerTerm::tangential_impulse];  // on the surface
+      d.hub_angular_impulse_n_m_s -= in.integral[LedgerTerm::contact_moment];
       d.along_m = tip_y(t, q);
     }
     last_h_ = h;
     control_.sink->delivery(d);
   }
   if (phase != Phase::free) {
-    // Friction on the tip is −μ F_n s_t along t (either force convention), so the surface gets
-    // +μ s_t ∫F_n dt along t; s_t is constant over a step (slip stops end steps).
-    if (load.slip != 0.0) contact_slip_ = load.slip;
+    // The surface receives the opposite of friction's impulse on the tip.
     const double omega = system_.beam.hub_motion().omega;
-    bins_.add_spread(relative_angle_deg(last_t_), omega * (t - last_t_) * 180.0 / M_PI, in.normal_impulse,
-                     system_.law.friction.mu * contact_slip_ * in.normal_impulse);
+    bins_.add_spread(relative_angle_deg(last_t_), omega * (t - last_t_) * 180.0 / M_PI,
+                     in.integral[LedgerTerm::normal_impulse], -in.integral[LedgerTerm::tangential_impulse]);
     s.contact_time_s += t - last_t_;
-    normal_time_integral_ += in.normal_impulse;
-    s.friction_work_j += in.friction_work;
-    s.surface_work_j += in.surface_work;
-    s.contact_dissipation_j += in.contact_dissipation;
-    work_ += in.work;
-    contact_moment_ += in.contact_moment;
+    normal_time_integral_ += in.integral[LedgerTerm::normal_impulse];
     note_force(std::max(load.normal_force, in.peak_normal_force));
   }
   last_t_ = t;
@@ -462,7 +431,6 @@ void PassRecorder::impact(double t, const Eigen::VectorXd& q, const Eigen::Vecto
     if (s.impacts - mark_.impacts == 1) rev_first_impact_deg_ = relative_angle_deg(t);
     rev_last_separation_deg_ = relative_angle_deg(t);
   }
-  s.normal_impulse_n_s += std::abs(r.impulse);
   bins_.add_impulse(relative_angle_deg(t), std::abs(r.impulse), -r.tangential_impulse);  // on the surface
   impact_jumps_ += r.delta_t2;
   // The hub's work during the impact: ω times its angular impulse, ΔH_z less the moment of the contact
@@ -472,7 +440,14 @@ void PassRecorder::impact(double t, const Eigen::VectorXd& q, const Eigen::Vecto
   const double dh = system_.beam.energy(q, qd_after, *ws_).angular_momentum -
                     system_.beam.energy(q, qd_before, *ws_).angular_momentum;
   const double hub_work = system_.beam.hub_motion().omega * (dh - impulse_moment);
-  impulse_moment_ += impulse_moment;
+  LedgerValues jump;
+  jump[LedgerTerm::normal_impulse] = std::abs(r.impulse);
+  jump[LedgerTerm::tangential_impulse] = r.tangential_impulse;
+  jump[LedgerTerm::contact_moment] = impulse_moment;
+  // The impulse's work less a moving surface's part (which is the surface's work, not a loss).
+  jump[LedgerTerm::impact_loss] = r.contact_work - r.surface_work;
+  jump[LedgerTerm::surface_work] = r.surface_work;
+  s.ledger += jump;
   if (deliveries_) {
     const double h_after = system_.beam.energy(q, qd_after, *ws_).angular_momentum;
     MomentumDelivery d;
@@ -486,9 +461,6 @@ void PassRecorder::impact(double t, const Eigen::VectorXd& q, const Eigen::Vecto
     control_.sink->delivery(d);
   }
   s.hub_impulsive_work_j += hub_work;
-  // The impulse's work less a moving surface's part (which is the surface's work, not a loss).
-  s.impact_loss_j += r.contact_work - r.surface_work;
-  s.surface_work_j += r.surface_work;
   sample(t, q, qd_before, Phase::free, ContactLoad{});
   PassEvent e;
   e.t = t;
@@ -513,7 +485,6 @@ void PassRecorder::contact_start(double t, const Eigen::VectorXd& q, const Eigen
   episode_theta0_ = system_.beam.theta(t);
   episode_y0_ = tip_y(t, q);
   event(EventKind::contact_start, t, q, detail);
-  contact_slip_ = load.slip;
   // The force right after the plastic impact that opens an episode is often the episode's largest.
   note_force(load.normal_force);
   sample(t, q, qd, Phase::contact, load);
@@ -530,8 +501,7 @@ void PassRecorder::compliant_touch(double t, const Eigen::VectorXd& q, const Eig
 }
 
 double PassRecorder::contact_energy(double t, const Eigen::VectorXd& q) const {
-  if (system_.law.model != ContactModel::hertz) return 0.0;
-  return hertz_elastic_energy(system_.law.hertz, gap(system_.beam, system_.surface, t, q));
+  return system_.law.stored_energy(system_, t, q);
 }
 
 void PassRecorder::contact_end(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
@@ -599,11 +569,13 @@ void PassRecorder::finish(double t, const Eigen::VectorXd& q, const Eigen::Vecto
   s.mean_normal_force_n = s.contact_time_s > 0 ? normal_time_integral_ / s.contact_time_s : 0.0;
   const EnergyTerms e = system_.beam.energy(q, qd, *ws_);
   energy_scale_ = std::max({energy_scale_, std::abs(e.jacobi), e.t2});
-  s.energy_audit_residual = std::abs(e.jacobi - h_start_ - work_ - s.damping_work_j - impact_jumps_) / energy_scale_;
+  s.energy_audit_residual = std::abs(e.jacobi - h_start_ - s.ledger[LedgerTerm::contact_work] -
+                                     s.ledger[LedgerTerm::damping_work] - impact_jumps_) /
+                            energy_scale_;
   // The hub's work from the angular-momentum balance: dH_z/dt = τ + (R × F)_z, with impulses at impacts.
-  s.hub_work_j = system_.beam.hub_motion().omega *
-                 (e.angular_momentum - momentum_start_ - contact_moment_ - impulse_moment_);
-  s.energy_change_j = e.kinetic + e.potential + contact_energy(t, q) - energy_start_;
+  s.ledger[LedgerTerm::hub_work] = system_.beam.hub_motion().omega *
+                                   (e.angular_momentum - momentum_start_ - s.ledger[LedgerTerm::contact_moment]);
+  s.ledger.energy_change_j = e.kinetic + e.potential + contact_energy(t, q) - energy_start_;
   result_.final_t = t;
   result_.final_q = q;
   result_.final_qd = qd;
@@ -644,11 +616,9 @@ void PassRecorder::finish(double t, const Eigen::VectorXd& q, const Eigen::Vecto
     }
   } else if (t > t_start_) {
     // One pass: the means over the pass.
-    s.mean_hub_torque_n_m = s.hub_work_j / (omega * (t - t_start_));
-    s.mean_hub_power_w = s.hub_work_j / (t - t_start_);
+    s.mean_hub_torque_n_m = s.ledger[LedgerTerm::hub_work] / (omega * (t - t_start_));
+    s.mean_hub_power_w = s.ledger[LedgerTerm::hub_work] / (t - t_start_);
   }
-  // After the last revolution's record, which adds the contact's part itself.
-  s.normal_impulse_n_s += normal_time_integral_;
   if (options_.revolutions > 0 && have_complete_) {
     result_.force_bins = complete_bins_;
     s.binned_force = complete_peaks_;

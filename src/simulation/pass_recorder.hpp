@@ -7,6 +7,8 @@
 #include "rotbeam/force_bins.hpp"
 #include "rotbeam/impact.hpp"
 #include "rotbeam/pass.hpp"
+#include "rotbeam/stepper.hpp"
+#include "rotbeam/surface.hpp"
 
 #include <memory>
 
@@ -72,8 +74,8 @@ public:
 private:
   // Ledger totals and counters at a revolution's start, whose differences make its record.
   struct RevolutionMark {
-    double t = 0, energy = 0, momentum = 0, contact_moment = 0, impulse_moment = 0, friction = 0, surface = 0, damping = 0,
-           impact_loss = 0, normal_impulse = 0, contact_time = 0, contact_dissipation = 0;
+    double t = 0, energy = 0, momentum = 0, contact_time = 0;
+    LedgerValues ledger;
     int impacts = 0, episodes = 0;
     std::size_t history_rows = 0, events = 0;  // in-memory sizes (runs without a sink)
   };
@@ -112,17 +114,14 @@ private:
   BinnedForcePeaks complete_peaks_;
   bool deliveries_ = false;             // the sink wants each step's MomentumDelivery
   double last_h_ = 0;                   // H_z at the last accepted point (deliveries) [kg m² /s]
-  double contact_slip_ = 0;             // the slip direction of the episode's latest contact step
   double last_t_ = 0;
   bool in_episode_ = false;
   bool touched_ = false;  // a compliant contact has begun in this pass
   double episode_t0_ = 0, episode_theta0_ = 0, episode_y0_ = 0;
   // Energy audit (rotating frame) and the inertial ledger.
-  double h_start_ = 0, work_ = 0, impact_jumps_ = 0, energy_scale_ = 0;
+  double h_start_ = 0, impact_jumps_ = 0, energy_scale_ = 0;
   double energy_start_ = 0, momentum_start_ = 0;  // E = T + U and H_z at the start
-  double contact_moment_ = 0;                     // ∫ (X F_Y − Y F_X) dt over sustained contact [N m s]
-  double impulse_moment_ = 0;                     // Σ (X P_Y − Y P_X) over the impacts [N m s]
-  double normal_time_integral_ = 0;
+  double normal_time_integral_ = 0;               // ∫ F_n dt over sustained contact [N s]
   bool deflection_warned_ = false;
   bool geometry_warned_ = false;
   bool validity_breached_ = false;

@@ -1,7 +1,9 @@
 #include "rotbeam/brush.hpp"
 
 #include "rotbeam/case.hpp"
+#include "rotbeam/force_bins.hpp"
 #include "rotbeam/job_runner.hpp"
+#include "rotbeam/units.hpp"
 
 #include <boost/random/mersenne_twister.hpp>
 #include <boost/random/normal_distribution.hpp>
@@ -136,14 +138,9 @@ FilamentSteadyState run_distinct(const Config& config, const std::vector<const B
     s.contact_time_s += weight * rec.contact_time_s;
     s.peak_normal_force_n = std::max(s.peak_normal_force_n, rec.peak_normal_force_n);
     s.max_tip_deflection_ratio = std::max(s.max_tip_deflection_ratio, rec.max_tip_deflection_ratio);
-    s.hub_work_j += weight * rec.hub_work_j;
-    s.friction_work_j += weight * rec.friction_work_j;
-    s.surface_work_j += weight * rec.surface_work_j;
-    s.damping_work_j += weight * rec.damping_work_j;
-    s.impact_loss_j += weight * rec.impact_loss_j;
-    s.contact_dissipation_j += weight * rec.contact_dissipation_j;
-    s.energy_change_j += weight * rec.energy_change_j;
-    s.ledger_residual_j = std::max(s.ledger_residual_j, std::abs(rec.ledger_residual_j));
+    for (std::size_t k = 0; k < kLedgerTermCount; ++k) s.ledger.value[k] += weight * rec.ledger.value[k];
+    s.ledger.energy_change_j += weight * rec.ledger.energy_change_j;
+    s.ledger_residual_max_j = std::max(s.ledger_residual_max_j, std::abs(rec.ledger.residual()));
   }
   s.mean_normal_force_n = weight * normal / period_s;
   s.mean_tangential_force_n = weight * tangential / period_s;
@@ -232,7 +229,7 @@ BrushResult run_brush(const Config& config, const BrushOptions& options) {
       result.distinct[g].reaches = false;
   }
   const std::vector<Config> configs = brush_filament_configs(config, result.filaments);
-  const double omega = config.beam.speed_rpm * M_PI / 30.0;
+  const double omega = rad_per_s_from_rpm(config.beam.speed_rpm);
   ForceBins total(config.simulation.bin_deg, omega), profile(config.simulation.bin_deg, omega);
   // Each group's bins are summed into the total in group order, whatever order the groups finish
   // in, so the result does not depend on the thread count.
@@ -305,14 +302,9 @@ BrushResult run_brush(const Config& config, const BrushOptions& options) {
     s.mean_normal_force_n += d.mean_normal_force_n;
     s.mean_tangential_force_n += d.mean_tangential_force_n;
     s.mean_hub_torque_n_m += d.mean_hub_torque_n_m;
-    s.hub_work_j += d.hub_work_j;
-    s.friction_work_j += d.friction_work_j;
-    s.surface_work_j += d.surface_work_j;
-    s.damping_work_j += d.damping_work_j;
-    s.impact_loss_j += d.impact_loss_j;
-    s.contact_dissipation_j += d.contact_dissipation_j;
-    s.energy_change_j += d.energy_change_j;
-    s.ledger_residual_j += d.ledger_residual_j;
+    s.ledger += d.ledger;
+    s.ledger.energy_change_j += d.ledger.energy_change_j;
+    s.ledger_residual_max_j += d.ledger_residual_max_j;
     if (std::isfinite(d.first_contact_deg)) {
       s.contact_zone_from_deg = std::isnan(s.contact_zone_from_deg) ? d.first_contact_deg
                                                                      : std::min(s.contact_zone_from_deg, d.first_contact_deg);

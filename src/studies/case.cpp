@@ -1,5 +1,6 @@
 #include "rotbeam/case.hpp"
 #include "rotbeam/beam_factory.hpp"
+#include "rotbeam/contact_laws.hpp"
 #include "rotbeam/modal_analysis.hpp"
 #include "rotbeam/steady_state.hpp"
 
@@ -23,8 +24,7 @@ Case build_case(const Config& config) {
   } catch (const std::invalid_argument& e) {
     throw ConfigError(e.what());
   }
-  c.law = config.contact;
-  c.law.hertz.stiffness = hertz_stiffness(c.law.hertz, config.beam.youngs_modulus_pa, config.beam.diameter_m);
+  c.law = make_contact_law(config.contact, config.beam.youngs_modulus_pa, config.beam.diameter_m);
   c.options = config.simulation;
   const int n = config.beam.modes;
   c.initial.rigid_start = config.initial.start == "rigid";

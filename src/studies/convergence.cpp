@@ -24,9 +24,9 @@ nlohmann::json metrics(const PassSummary& s) {
           {"impacts", s.impacts},
           {"contact_episodes", s.contact_episodes},
           {"contact_time_s", s.contact_time_s},
-          {"normal_impulse_n_s", s.normal_impulse_n_s},
+          {"normal_impulse_n_s", s.ledger[LedgerTerm::normal_impulse]},
           {"peak_normal_force_n", s.peak_normal_force_n},
-          {"friction_work_j", s.friction_work_j},
+          {"friction_work_j", s.ledger[LedgerTerm::friction_work]},
           {"energy_audit_residual", s.energy_audit_residual},
           {"steps", s.steps},
           {"rhs_evaluations", s.rhs_evaluations},
@@ -153,9 +153,9 @@ nlohmann::json convergence_json(const ConvergenceStudy& study) {
         {"impacts", r.summary.impacts - ref.impacts},
         {"contact_episodes", r.summary.contact_episodes - ref.contact_episodes},
         {"contact_time_rel", relative(r.summary.contact_time_s, ref.contact_time_s)},
-        {"normal_impulse_rel", relative(r.summary.normal_impulse_n_s, ref.normal_impulse_n_s)},
+        {"normal_impulse_rel", relative(r.summary.ledger[LedgerTerm::normal_impulse], ref.ledger[LedgerTerm::normal_impulse])},
         {"peak_normal_force_rel", relative(r.summary.peak_normal_force_n, ref.peak_normal_force_n)},
-        {"friction_work_rel", relative(r.summary.friction_work_j, ref.friction_work_j)}};
+        {"friction_work_rel", relative(r.summary.ledger[LedgerTerm::friction_work], ref.ledger[LedgerTerm::friction_work])}};
     j["failure"] = r.failure.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.failure);
     runs.push_back(j);
   }

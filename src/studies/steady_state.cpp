@@ -1,5 +1,7 @@
 #include "rotbeam/steady_state.hpp"
 
+#include "rotbeam/beam_model.hpp"
+
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>

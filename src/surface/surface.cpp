@@ -1,4 +1,5 @@
 #include "rotbeam/surface.hpp"
+#include "rotbeam/units.hpp"
 
 #include "rotbeam/casing.hpp"
 #include "rotbeam/cylinder.hpp"
@@ -31,7 +32,7 @@ std::shared_ptr<const Surface> make_surface(const SurfaceParameters& p, const Be
       finite(p.speed_rpm, "cylinder speed");
       if (!(p.radius_m > 0.0)) throw std::invalid_argument("cylinder radius must be > 0, got " + std::to_string(p.radius_m));
       const double d = plane_at_depth(beam, p.depth_fraction).distance();
-      return std::make_shared<Cylinder>(d, p.radius_m, p.speed_rpm * M_PI / 30.0);
+      return std::make_shared<Cylinder>(d, p.radius_m, rad_per_s_from_rpm(p.speed_rpm));
     }
     case SurfaceShape::casing: {
       finite(p.clearance_m, "casing clearance");
