@@ -194,17 +194,42 @@ struct PassProgress {
   std::string stage;                    // a steady-state search's stage in words ("" while a run turns)
 };
 
+/// Watches the revolutions of a run over many (the steady-state search of steady_state.hpp is one):
+/// told of every complete revolution as it closes, it may end the run there; at the run's end it
+/// gives its account in the summary.
+class RevolutionWatcher {
+public:
+  virtual ~RevolutionWatcher() = default;
+  /// The run starts at (q, q̇) [m], [m/s] (the first revolution's section).
+  virtual void start(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) = 0;
+  /// A complete revolution closed (with its section distance): true ends the run there.
+  virtual bool revolution(const RevolutionRecord& record) = 0;
+  /// The run ended in revolution `revolution` (after a failure when `failed`): fills
+  /// summary.steady_state; returns a warning for the run ("" for none).
+  virtual std::string finish(PassSummary& summary, bool failed, int revolution) = 0;
+};
+
 /// How a pass is watched: where its rows and events go (nullptr: into PassResult), the token that
-/// stops it (nullptr: none), and a progress callback (called a few times a second at most).
+/// stops it (nullptr: none), a progress callback (called a few times a second at most), and a
+/// watcher of its revolutions (nullptr: none).
 struct PassControl {
   PassSink* sink = nullptr;
   const StopToken* stop = nullptr;
   std::function<void(const PassProgress&)> on_progress;
+  RevolutionWatcher* watcher = nullptr;
+};
+
+/// A sink that keeps nothing (a run whose summary alone is wanted).
+class DiscardSink final : public PassSink {
+public:
+  void row(const HistoryRow&) override {}
+  void event(const PassEvent&) override {}
 };
 
 /// Runs one pass of `system` from `initial` with options.scheme's stepper under the pass driver.
 /// Never throws for numerical trouble: a failure is returned in PassResult::failure with everything
-/// computed up to it.
+/// computed up to it. options.until_steady is the watcher's (control.watcher; run_to_steady_state in
+/// steady_state.hpp gives one): run_pass itself runs to the end angle or the watcher's word.
 PassResult run_pass(const System& system, const InitialConditions& initial, const PassOptions& options,
                     const PassControl& control = {});
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "rotbeam/config.hpp"
+#include "rotbeam/history_window.hpp"
 #include "rotbeam/pass.hpp"
 
 #include <cstdio>
@@ -93,10 +94,8 @@ private:
 
   std::filesystem::path dir_;
   int n_ = 0;
-  int history_revolutions_ = 0;
+  HistoryWindow window_;  // output.history_revolutions
   long piece_count_ = 0;
-  bool rotate_pending_ = false;
-  double rotate_after_t_ = 0;
   void start_next_piece();
   Stream history_, events_, revolutions_;
   std::unique_ptr<FolderLock> lock_;

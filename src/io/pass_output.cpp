@@ -330,7 +330,7 @@ bool holds_run_files(const std::filesystem::path& dir) {
 }  // namespace
 
 PassFiles::PassFiles(const std::filesystem::path& dir, int n, int history_revolutions)
-    : dir_(dir), n_(n), history_revolutions_(history_revolutions) {
+    : dir_(dir), n_(n), window_(history_revolutions) {
   namespace fs = std::filesystem;
   // A sweep's folder (its sweep.csv) is not made a run's as well: `plot` would draw one of the two.
   if (fs::exists(dir / "sweep.csv"))
@@ -407,7 +407,7 @@ void PassFiles::rotate(Stream& s) {
   if (std::fclose(s.file) != 0) throw std::runtime_error(io_error(s.final_path, "write failed", errno));
   s.file = nullptr;
   s.pieces.push_back(s.temporary_path);
-  while (static_cast<int>(s.pieces.size()) > history_revolutions_ - 1) {
+  while (static_cast<int>(s.pieces.size()) > window_.complete_pieces_kept()) {
     std::remove(s.pieces.front().c_str());
     s.pieces.erase(s.pieces.begin());
     s.first_piece_has_header = false;
@@ -478,19 +478,18 @@ void PassFiles::close(Stream& s) {
 }
 
 void PassFiles::row(const HistoryRow& row) {
-  if (rotate_pending_ && row.t > rotate_after_t_) start_next_piece();
+  if (window_.starts_piece(row.t)) start_next_piece();
   append_history_line(history_.buffer, row);
   if (history_.buffer.size() >= kFlushBytes) flush(history_);
 }
 
 void PassFiles::event(const PassEvent& event) {
-  if (rotate_pending_ && event.t > rotate_after_t_) start_next_piece();
+  if (window_.starts_piece(event.t)) start_next_piece();
   append_event_line(events_.buffer, event);
   if (events_.buffer.size() >= kFlushBytes) flush(events_);
 }
 
 void PassFiles::start_next_piece() {
-  rotate_pending_ = false;
   rotate(history_);
   rotate(events_);
 }
@@ -499,13 +498,7 @@ void PassFiles::revolution(const RevolutionRecord& r) {
   if (!revolutions_.file) open(revolutions_, "revolutions.csv", revolutions_header(n_));
   append_revolution_line(revolutions_.buffer, r);
   if (revolutions_.buffer.size() >= kFlushBytes) flush(revolutions_);
-  // The rows and events of revolution r have all arrived: with a window, the next revolution's
-  // first row or event (after its section time; the end event of the run has the section's) starts a
-  // new piece.
-  if (history_revolutions_ > 0 && r.complete) {
-    rotate_pending_ = true;
-    rotate_after_t_ = r.t_end;
-  }
+  window_.revolution(r);
 }
 
 void PassFiles::commit(const PassResult& result, const Config& config, const Surface& surface) {

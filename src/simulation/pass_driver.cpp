@@ -171,10 +171,7 @@ void PassDriver::rebound() {
 }
 
 void PassDriver::enter_contact(const ContactLoad& load, const std::string& why, bool first_touch) {
-  if (first_touch)
-    rec_.compliant_touch(state_.t, state_.q, state_.qd, load, why);
-  else
-    rec_.contact_start(state_.t, state_.q, state_.qd, load, why);
+  rec_.contact_start(state_.t, state_.q, state_.qd, load, why, first_touch);
   stepper_.begin_contact(state_);
 }
 

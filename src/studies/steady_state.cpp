@@ -13,13 +13,6 @@ namespace rotbeam {
 
 namespace {
 
-// Rows and events of the map's evaluations are not kept.
-class DiscardSink final : public PassSink {
-public:
-  void row(const HistoryRow&) override {}
-  void event(const PassEvent&) override {}
-};
-
 void set_modal_state(const BeamModel& beam, const Eigen::VectorXd& z, InitialConditions& ic) {
   const int n = beam.modes();
   const double L = beam.beam_length(), omega = beam.hub_motion().omega;
@@ -135,9 +128,83 @@ void report(const PassControl& control, std::chrono::steady_clock::time_point wa
   control.on_progress(p);
 }
 
+// The brute-force test for the steady state (SPEC §12): every complete revolution's section state
+// against those of the last kMaxSteadyPeriod revolutions; the first within simulation.steady_tolerance
+// ends the run, periodic every p revolutions.
+class SteadyStateDetector final : public RevolutionWatcher {
+public:
+  SteadyStateDetector(const BeamModel& beam, const PassOptions& options) : beam_(beam), options_(options) {}
+
+  void start(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) override {
+    sections_.clear();
+    sections_.push_back(section_state(beam_, q, qd));
+  }
+
+  bool revolution(const RevolutionRecord& r) override {
+    const Eigen::VectorXd z = section_state(beam_, r.q, r.qd);
+    const double tol = options_.steady_tolerance;
+    int period = r.section_distance < tol ? 1 : 0;  // against the previous section
+    const int held = static_cast<int>(sections_.size());
+    for (int p = 2; period == 0 && p <= held; ++p)
+      if (section_distance(z, sections_[held - p]) < tol) period = p;
+    sections_.push_back(z);
+    if (static_cast<int>(sections_.size()) > kMaxSteadyPeriod) sections_.erase(sections_.begin());
+    last_distance_ = r.section_distance;
+    if (period == 0 || reached_) return false;
+    reached_ = true;
+    after_ = r.revolution;
+    period_ = period;
+    return true;
+  }
+
+  std::string finish(PassSummary& summary, bool failed, int revolution) override {
+    SteadyState& st = summary.steady_state;
+    st.sought = true;
+    st.tolerance = options_.steady_tolerance;
+    st.method = SteadyMethod::brute_force;
+    st.final_distance = last_distance_;
+    st.reached = reached_;
+    st.after_revolutions = after_;
+    st.period_revolutions = period_;
+    std::ostringstream m;
+    if (reached_)
+      m << "reached after " << after_ << (after_ == 1 ? " revolution, " : " revolutions, ")
+        << (period_ == 1 ? std::string("periodic every revolution")
+                         : "periodic every " + std::to_string(period_) + " revolutions")
+        << " (section distance over the period < " << options_.steady_tolerance << ")";
+    else if (failed)
+      m << "not reached: the run stopped in revolution " << revolution;
+    else if (options_.revolutions == 1)
+      m << "not reached within 1 revolution (its section compared with the start only: distance " << last_distance_
+        << ", tolerance " << options_.steady_tolerance << ")";
+    else
+      m << "not reached within " << options_.revolutions << " revolutions (section distance " << last_distance_
+        << ", tolerance " << options_.steady_tolerance << ")";
+    st.note = m.str();
+    return !reached_ && !failed ? "no steady state: " + st.note : "";
+  }
+
+private:
+  const BeamModel& beam_;
+  const PassOptions& options_;
+  std::vector<Eigen::VectorXd> sections_;  // the last kMaxSteadyPeriod sections, oldest first
+  double last_distance_ = NAN;
+  bool reached_ = false;
+  int after_ = 0, period_ = 0;
+};
+
+// run_pass with the brute-force steady-state test watching its revolutions.
+PassResult run_watched(const System& system, const InitialConditions& initial, const PassOptions& options,
+                       const PassControl& control) {
+  SteadyStateDetector detector(system.beam, options);
+  PassControl watched = control;
+  watched.watcher = &detector;
+  return run_pass(system, initial, options, watched);
+}
+
 PassResult brute_force(const System& system, const InitialConditions& initial, const PassOptions& options,
                        const PassControl& control) {
-  PassResult r = run_pass(system, initial, options, control);
+  PassResult r = run_watched(system, initial, options, control);
   SteadyState& st = r.summary.steady_state;
   if (!st.reached || r.failure || !options.multipliers) return r;
   const auto wall0 = std::chrono::steady_clock::now();
@@ -250,7 +317,7 @@ PassResult shooting(const System& system, const InitialConditions& initial, cons
   warm.near_surface_gap_m = 0.0;
   DiscardSink discard;
   PassControl warm_control{&discard, control.stop, control.on_progress};
-  PassResult w = run_pass(system, initial, warm, warm_control);
+  PassResult w = run_watched(system, initial, warm, warm_control);
   const int warm_revolutions = w.summary.revolutions;
   if (w.failure || warm_revolutions == 0) {
     // Nothing to shoot from: the warm-up's result (its failure, or a stop) is the answer. Its rows
@@ -262,9 +329,10 @@ PassResult shooting(const System& system, const InitialConditions& initial, cons
       PassOptions again = warm;
       again.output_interval_s = options.output_interval_s;
       again.near_surface_gap_m = options.near_surface_gap_m;
-      w = run_pass(system, initial, again, control);
+      w = run_watched(system, initial, again, control);
     }
     SteadyState& st = w.summary.steady_state;
+    st.sought = true;
     st.method = SteadyMethod::shooting;
     st.tolerance = options.steady_tolerance;
     st.reached = false;

@@ -119,13 +119,6 @@ const SweepMetric kBrushMetrics[] = {
     {"failed_filaments", "/failed_filaments", "1", "filaments stopped on a numerical failure"},
     {"wall_time_s", "/wall_time_s", "s", "wall time of the case (the machine's, not a result)"}};
 
-// A sink that drops the rows and events as they come (a sweep in memory keeps only the summary).
-class DiscardingSink : public PassSink {
-public:
-  void row(const HistoryRow&) override {}
-  void event(const PassEvent&) override {}
-};
-
 // Status and message of a case from how its pass or brush ended.
 void set_outcome(SweepCaseResult& res, const std::optional<NumericalFailure>& failure, const std::string& where) {
   if (!failure)
@@ -425,7 +418,7 @@ SweepCaseResult run_sweep_case(const Config& config, const StopToken* stop) {
       return res;
     }
     const Case c = build_case(config);
-    DiscardingSink sink;
+    DiscardSink sink;  // a sweep in memory keeps only the summary
     const PassResult pass = run_case(c, {&sink, stop, {}});
     res.summary = summary_json(pass, config, *c.surface);
     set_outcome(res, pass.failure, "");
