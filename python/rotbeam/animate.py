@@ -136,9 +136,9 @@ def filament_frames(folder, rows=None, points=41, magnify=1.0, history=None, sum
     folder = Path(folder)
     if summary is None:
         summary = json.loads((folder / "summary.json").read_text())
-    if history is None:
-        history = read_csv(folder / "history.csv")
     n = summary["config"]["beam"]["modes"]
+    if history is None:
+        history = read_csv(folder / "history.csv", modes=n)
     rows = np.arange(len(history["t_s"])) if rows is None else np.asarray(rows)
     q = np.column_stack([history[f"q{i + 1}_m"][rows] for i in range(n)])
     xi = np.linspace(0.0, 1.0, points)

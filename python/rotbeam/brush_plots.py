@@ -15,49 +15,13 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import numpy as np
 
+from ._csv import read_csv
+
 DEG = "°"
 
 
 class DamagedBrush(Exception):
     """A brush folder whose files are not those its summary.json describes."""
-
-
-def _read_table(path):
-    """A CSV table as {column: array}: numbers as floats, "true"/"false" as booleans, other words as
-    strings; a row with the wrong number of fields raises DamagedBrush naming the file and line."""
-    lines = Path(path).read_text().splitlines()
-    if not lines:
-        raise DamagedBrush(f"{path}: empty")
-    names = lines[0].split(",")
-    rows = []
-    for i, line in enumerate(lines[1:], start=2):
-        fields = line.split(",")
-        if len(fields) != len(names):
-            raise DamagedBrush(f"{path}: line {i} has {len(fields)} fields where the header names {len(names)}")
-        rows.append(fields)
-    out = {}
-    for k, name in enumerate(names):
-        values = [r[k] for r in rows]
-        if values and all(v in ("true", "false") for v in values):
-            out[name] = np.array([v == "true" for v in values])
-            continue
-        try:
-            out[name] = np.array([float(v) for v in values], dtype=float)
-        except ValueError:
-            if name in ("status",):
-                out[name] = np.array(values, dtype=str)
-            else:
-                bad = next(v for v in values if not _is_number(v))
-                raise DamagedBrush(f"{path}: column {name} holds {bad!r}, not a number") from None
-    return out
-
-
-def _is_number(v):
-    try:
-        float(v)
-        return True
-    except ValueError:
-        return False
 
 
 def read_brush(folder):
@@ -77,7 +41,8 @@ def read_brush(folder):
         if path.stat().st_size != entry.get("bytes"):
             raise DamagedBrush(f"{path}: {path.stat().st_size} bytes where summary.json records {entry.get('bytes')}: "
                                "the folder holds files of different runs, or a damaged one")
-    tables = [_read_table(folder / name) for name in ("workpiece.csv", "profile.csv", "filaments.csv")]
+    tables = [read_csv(folder / name, error=DamagedBrush)
+              for name in ("workpiece.csv", "profile.csv", "filaments.csv")]
     return (summary, *tables)
 
 

@@ -12,13 +12,10 @@ function returning its matplotlib figure (force_figure, tip_path_figure, energy_
 """
 
 import argparse
-import csv
 import errno
-import io
 import json
 import math
 import os
-import re
 import shutil
 import sys
 import tempfile
@@ -53,6 +50,8 @@ except ImportError as missing:
 
 DEG = "°"
 
+from ._csv import (EVENT_COLUMNS, EVENT_KINDS, EVENT_OPTIONAL, FORCE_BIN_COLUMNS, PHASES,  # noqa: E402,F401
+                   Columns, DamagedFolder, columns_of, read_csv)
 from .brush_plots import BRUSH_MAP_PANELS, DamagedBrush, brush_figures, read_brush  # noqa: E402
 from .rub_map import is_rub_sweep, rub_map_figure  # noqa: E402
 
@@ -140,100 +139,19 @@ def animate(folder, output=None, **options):
     return draw_animation(folder, output, **options)
 
 
-def read_csv(path):
-    """A CSV file as {column: numpy array} (numbers where every value is one; empty arrays for a file
-    that holds only its header)."""
-    with open(path, newline="") as f:
-        reader = csv.DictReader(f)
-        rows = list(reader)
-    columns = {}
-    for key in reader.fieldnames or []:
-        values = [r[key] for r in rows]
-        try:
-            columns[key] = np.array([float(v) if v != "" else math.nan for v in values])
-        except ValueError:
-            columns[key] = np.array(values)
-    return columns
-
-
-# What a run writes (src/io/pass_output.cpp): numbers in their shortest round-trip form
-# (std::to_chars: 0.1, -3.2e-05, 1e+20, inf, nan), the phase and the event kind as words.
-PHASES = ("free", "contact", "stick")
-EVENT_KINDS = ("impact", "lift_off", "contact_start", "contact_end", "slip_reversal", "tip_distance_rule", "warning",
-               "failure", "end", "clear")
-EVENT_COLUMNS = ("t_s", "theta_deg", "kind", "y_tip_m", "vx_before_m_s", "vx_after_m_s", "restitution", "impulse_n_s",
-                 "hub_work_j", "detail")
-EVENT_OPTIONAL = ("y_tip_m", "vx_before_m_s", "vx_after_m_s", "restitution", "impulse_n_s", "hub_work_j")
-_NUMBER = r"[-+]?(?:[0-9]+(?:\.[0-9]+)?(?:[eE][-+]?[0-9]+)?|inf|nan)"
-_NUMBER_RE = re.compile(_NUMBER)
-_COLUMN_RE = {False: re.compile(f"{_NUMBER}(?:\n{_NUMBER})*"), True: re.compile(f"(?:{_NUMBER})?(?:\n(?:{_NUMBER})?)*")}
-
-
 def history_columns(n):
     """The columns of a history.csv of n modes, in their order."""
-    return (["t_s", "theta_deg", "phase", "x_tip_m", "y_tip_m", "gap_m", "vx_m_s", "vy_m_s", "normal_force_n",
-             "friction_force_n", "lambda_n"] + [f"q{i}_m" for i in range(1, n + 1)] +
-            [f"qd{i}_m_s" for i in range(1, n + 1)] + ["jacobi_j", "hub_torque_n_m"])
+    return list(columns_of("history.csv", n))
 
 
 def read_run_table(path, required, words=None, text=(), may_be_empty=(), why_required=""):
-    """A CSV file a run wrote as {column: numpy array}, read strictly: the damage a size check cannot
-    see (a NUL byte, a letter in a number, an unknown word) raises DamagedFolder naming the file, the
-    line, the column and the value. `required`: the columns it must have; `words`: {column: the
-    words allowed}; `text`: free-text columns; `may_be_empty`: numeric columns whose value may be
-    missing (NaN); every other column holds a number on every row."""
-    path = Path(path)
-    words = words or {}
-    data = path.read_bytes()
-    if b"\0" in data:
-        line = data.count(b"\n", 0, data.index(b"\0")) + 1
-        raise DamagedFolder(f"{path}: line {line}: a NUL byte")
-    try:
-        content = data.decode("utf-8")
-    except UnicodeDecodeError as e:
-        line = data.count(b"\n", 0, e.start) + 1
-        raise DamagedFolder(f"{path}: line {line}: not UTF-8 text") from None
-    reader = csv.reader(io.StringIO(content, newline=""))
-    try:
-        header = next(reader, None)
-        if not header:
-            raise DamagedFolder(f"{path}: empty (no header line)")
-        missing = [c for c in required if c not in header]
-        if missing:
-            raise DamagedFolder(f"{path}: no column {missing[0]}{why_required}")
-        doubled = [c for c in header if header.count(c) > 1]
-        if doubled:
-            raise DamagedFolder(f"{path}: the column {doubled[0]} twice")
-        rows, lines = [], []
-        for row in reader:
-            if len(row) != len(header):
-                raise DamagedFolder(f"{path}: line {reader.line_num}: {len(row)} values where the header has "
-                                    f"{len(header)}")
-            rows.append(row)
-            lines.append(reader.line_num)
-    except csv.Error as e:
-        raise DamagedFolder(f"{path}: line {reader.line_num}: not CSV ({e})") from None
-    columns = {}
-    for i, name in enumerate(header):
-        values = [r[i] for r in rows]
-        if name in text:
-            columns[name] = np.array(values, dtype=str)
-            continue
-        if name in words:
-            allowed = set(words[name])
-            for line, v in zip(lines, values):
-                if v not in allowed:
-                    raise DamagedFolder(f"{path}: line {line}, column {name}: {v!r} is not one of "
-                                        f"{', '.join(words[name])}")
-            columns[name] = np.array(values, dtype=str)
-            continue
-        empty_ok = name in may_be_empty
-        if not _COLUMN_RE[empty_ok].fullmatch("\n".join(values)):
-            for line, v in zip(lines, values):
-                if not (_NUMBER_RE.fullmatch(v) or (empty_ok and v == "")):
-                    raise DamagedFolder(f"{path}: line {line}, column {name}: {v!r} is not a number")
-        columns[name] = np.array([float(v) if v else math.nan for v in values], dtype=float)
-    return columns
+    """A CSV file a run wrote as {column: numpy array}, read strictly (rotbeam._csv.read_csv): the
+    damage a size check cannot see (a NUL byte, a letter in a number, an unknown word) raises
+    DamagedFolder naming the file, the line, the column and the value. `required`: the columns it
+    must have; `words`: {column: the words allowed}; `text`: free-text columns; `may_be_empty`:
+    numeric columns whose value may be missing (NaN); every other column holds a number on every row."""
+    return read_csv(path, Columns(tuple(required), words or {}, tuple(text), optional=tuple(may_be_empty)),
+                    why_required=why_required)
 
 
 def surface_words(config):
@@ -270,10 +188,6 @@ def case_title(summary):
     c = summary["config"]
     return (f"{c['hub']['speed_rpm']:g} rpm, {surface_words(c)}, "
             f"μ = {c['surface']['friction']:g}, {modes_words(c)}, {summary['scheme']} scheme")
-
-
-class DamagedFolder(Exception):
-    """A run folder whose files are not those its summary.json describes."""
 
 
 class OutputFolderError(Exception):
@@ -457,10 +371,6 @@ def impact_impulses(events):
             np.abs(np.asarray(events["impulse_n_s"][imp], dtype=float)))
 
 
-FORCE_BIN_COLUMNS = ("theta_from_deg", "theta_to_deg", "normal_impulse_n_s", "tangential_impulse_n_s",
-                     "mean_normal_force_n", "mean_tangential_force_n", "impacts")
-
-
 def force_bins(folder, h, events, summary, bin_deg=0.5):
     """The normal force in bins of hub angle: (columns, source). From the run's force_bins.csv where it
     has one; otherwise computed here from the files (each impact's |P| from events.csv, ∫F_n dt of
@@ -469,7 +379,7 @@ def force_bins(folder, h, events, summary, bin_deg=0.5):
     the last, mean force = the bin's momentum / the time the hub takes to turn through it."""
     path = Path(folder) / "force_bins.csv"
     if path.exists():
-        return read_run_table(path, FORCE_BIN_COLUMNS), "force_bins.csv"
+        return read_csv(path), "force_bins.csv"
     bin_deg = float((summary.get("binned_force") or {}).get("bin_deg") or bin_deg)
     omega = summary["config"]["hub"]["speed_rpm"] * math.pi / 30.0
     count = int(math.ceil(360.0 / bin_deg - 1e-9))
@@ -626,12 +536,11 @@ def read_run(folder):
     folder = Path(folder)
     summary = check_run_files(folder)
     n = summary["config"]["beam"]["modes"]
-    history = read_run_table(folder / "history.csv", history_columns(n), {"phase": PHASES},
-                             why_required=f" (summary.json: config.beam.modes = {n}; the files are not of one run)")
-    events = read_run_table(folder / "events.csv", EVENT_COLUMNS, {"kind": EVENT_KINDS}, text=("detail",),
-                            may_be_empty=EVENT_OPTIONAL)
+    history = read_csv(folder / "history.csv", modes=n,
+                       why_required=f" (summary.json: config.beam.modes = {n}; the files are not of one run)")
+    events = read_csv(folder / "events.csv")
     if (folder / "force_bins.csv").exists():
-        read_run_table(folder / "force_bins.csv", FORCE_BIN_COLUMNS)
+        read_csv(folder / "force_bins.csv")
     return history, events, summary
 
 

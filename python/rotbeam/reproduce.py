@@ -10,7 +10,6 @@ contact rows of history.csv where a run has none) puts impacts and sustained con
 """
 
 import argparse
-import csv
 import json
 import math
 import re
@@ -29,6 +28,8 @@ from .plots import DEG, draw_surface, force_bins, save_figure, surface_of, surfa
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from ._csv import DamagedFolder, read_csv  # noqa: E402
+
 MODELS = ("thesis", "physical")
 MODEL_TITLES = {"thesis": "thesis scheme, force |λ|·|∇C|", "physical": "default model, F_n = −λ"}
 HISTORY_COLUMNS = ("t_s", "theta_deg", "phase", "x_tip_m", "y_tip_m", "gap_m", "vx_m_s", "vy_m_s", "normal_force_n")
@@ -43,22 +44,9 @@ def mathtext(text):
 
 
 def read_table(path, columns=None):
-    """A CSV file as {column: numpy array} (floats, or strings for a text column); only `columns`
-    when given (those the file has)."""
-    with open(path, newline="") as f:
-        reader = csv.reader(f)
-        header = next(reader, [])
-        rows = list(reader)
-    wanted = [c for c in header if columns is None or c in columns]
-    table = {}
-    for c in wanted:
-        k = header.index(c)
-        values = [r[k] if k < len(r) else "" for r in rows]
-        try:
-            table[c] = np.array([float(v) if v != "" else math.nan for v in values])
-        except ValueError:
-            table[c] = np.array(values)
-    return table
+    """A CSV file of a run as {column: numpy array} (rotbeam._csv.read_csv: read whole and checked);
+    only `columns` when given."""
+    return read_csv(path, only=columns)
 
 
 class Runs:
@@ -676,6 +664,9 @@ def main(argv=None):
                   file=sys.stderr)
             return 2
         report = write_report(folder, progress if args.progress else None)
+    except DamagedFolder as e:
+        print(f"rotbeam: error: {e}", file=sys.stderr)
+        return 2
     except OSError as e:
         where = f"{e.filename}: " if e.filename else ""
         print(f"rotbeam: error: {where}{e.strerror or e}", file=sys.stderr)
