@@ -27,7 +27,8 @@ import sys  # noqa: E402
 from pathlib import Path  # noqa: E402
 
 from .plots import (DamagedFolder, case_title, put_in_place, read_csv, read_run,  # noqa: E402
-                    remove_stale_temporaries, surface_of, surface_x, draw_surface, temporary_beside)
+                    remove_stale_temporaries, temporary_beside)
+from ._surface import draw_surface, outline, reach_m, surface_of, surface_x  # noqa: E402
 
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
@@ -208,12 +209,8 @@ def animate(folder, output=None, frames=None, frames_per_degree=None, window=Non
     shape = filament_frames(folder, rows, magnify=magnify, history=history, summary=summary)
     c = summary["config"]
     surface = surface_of(summary)
-    L = c["beam"]["length_m"]
     # How far the tip reaches into the surface: the zoom's scale.
-    s = c["surface"]
-    depth = (max(abs(s["clearance_m"]), 2 * s.get("lobe_amplitude_m", 0.0), 1e-4) if s.get("shape") == "casing"
-             else s["depth_fraction"] * L)
-    zoom = (zoom_mm if zoom_mm is not None else max(2.5, 3e3 * depth)) * 1e-3
+    zoom = (zoom_mm if zoom_mm is not None else max(2.5, 3e3 * reach_m(c))) * 1e-3
     if not zoom > 0:
         raise ValueError(f"zoom = {zoom_mm:g} mm: must be positive")
 
@@ -256,8 +253,7 @@ def animate(folder, output=None, frames=None, frames_per_degree=None, window=Non
     if casing:  # the casing all round the hub (the view shows the part the filament sweeps)
         draw_surface(ax, surface, None, color="0.3", lw=1)
     else:
-        surface_y = np.linspace(xmin - pad, xmax + pad, 200)
-        surface_h = -surface_x(surface, surface_y * 1e-3) * 1e3
+        surface_y, surface_h = outline(surface, [xmin - pad, xmax + pad])
         ax.fill_between(surface_y, surface_h, ymin - 3 * pad, color="0.55", alpha=0.5, lw=0)
         ax.plot(surface_y, surface_h, color="0.3", lw=1)
     ax.set_xlabel("Y (mm)")

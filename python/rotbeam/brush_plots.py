@@ -16,6 +16,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from ._csv import read_csv
+from ._surface import surface_words
 
 DEG = "°"
 
@@ -50,8 +51,8 @@ def _title(summary):
     c = summary["config"]
     b = c["brush"]
     return (f"Brush of {summary['filaments']} filaments ({b['filaments']} around × {b['rows']} rows, "
-            f"{summary['distinct_filaments']} distinct), {c['hub']['speed_rpm']:g} rpm, depth "
-            f"{100 * c['surface']['depth_fraction']:g} %, μ = {c['surface']['friction']:g}")
+            f"{summary['distinct_filaments']} distinct), {c['hub']['speed_rpm']:g} rpm, {surface_words(c)}, "
+            f"μ = {c['surface']['friction']:g}")
 
 
 def _centres(table):

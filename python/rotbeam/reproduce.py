@@ -23,12 +23,13 @@ if __name__ == "__main__":
     announce_start()
 
 # rotbeam.plots first: where numpy or matplotlib is missing it says so in one line.
-from .plots import DEG, draw_surface, force_bins, save_figure, surface_of, surface_x  # noqa: E402
+from .plots import DEG, force_bins, save_figure  # noqa: E402
 
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from ._csv import DamagedFolder, read_csv  # noqa: E402
+from ._surface import draw_surface, surface_of, surface_x  # noqa: E402
 
 MODELS = ("thesis", "physical")
 MODEL_TITLES = {"thesis": "thesis scheme, force |λ|·|∇C|", "physical": "default model, F_n = −λ"}

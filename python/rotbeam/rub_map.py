@@ -10,6 +10,8 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import numpy as np
 
+from ._surface import casing_words
+
 SPEED = "hub.speed_rpm"
 
 # (column, scale, axis label) of the response panels.
@@ -63,14 +65,6 @@ def crossings(speeds_rpm, frequencies_hz, order):
 
 # The modes' colours (their curves, crossings and dotted lines), apart from the series' C0, C1, ….
 MODE_COLORS = ["k", "0.45", "0.7"]
-
-
-def casing_words(surface):
-    """'clearance 0.1 mm, 2 cosine lobes of 0.3 mm' for a title."""
-    lobes = int(surface.get("lobes", 0))
-    shape = (f", {lobes} {surface.get('lobe_law', 'cosine')} lobe{'s' if lobes != 1 else ''} of "
-             f"{1e3 * surface.get('lobe_amplitude_m', 0):g} mm" if lobes else ", concentric")
-    return f"clearance {1e3 * surface.get('clearance_m', 0):g} mm{shape}"
 
 
 def casings(folder, table, ok):
