@@ -20,7 +20,6 @@ if __name__ == "__main__":
 import argparse  # noqa: E402
 import json  # noqa: E402
 import math  # noqa: E402
-import os  # noqa: E402
 import shutil  # noqa: E402
 import subprocess  # noqa: E402
 import sys  # noqa: E402
@@ -33,6 +32,8 @@ from ._surface import draw_surface, outline, reach_m, surface_of, surface_x  # n
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from PIL import Image  # noqa: E402
+
+from ._interrupt import error, file_error, wrote  # noqa: E402
 
 #: Slow motion: a degree of hub angle within `EVENT_HALF_WIDTH_DEG` of an impact, contact start or
 #: separation gets `EVENT_WEIGHT` times the frames of a degree of free flight; one in sustained
@@ -465,21 +466,16 @@ def main(argv=None):
                           window=args.window, zoom_mm=args.zoom, magnify=args.magnify, fps=args.fps,
                           note=lambda text: print(f"rotbeam: note: {text}", file=sys.stderr))
     except DamagedFolder as e:
-        print(f"rotbeam: error: {e}", file=sys.stderr)
-        return 2
+        return error(e)
     except OSError as e:
-        where = f"{e.filename}: " if e.filename else ""
-        print(f"rotbeam: error: {where}{e.strerror or e}", file=sys.stderr)
-        return 1
+        return file_error(e)
     except (ValueError, KeyError, IndexError) as e:
         print(f"rotbeam: error: {e}"[:400], file=sys.stderr)
         return 2
-    for w in written:
-        print(f"wrote {w}")
-    return 0
+    return wrote(written)
 
 
 if __name__ == "__main__":
-    from rotbeam.plots import run_main
+    from rotbeam._interrupt import run_main
 
     run_main(main)

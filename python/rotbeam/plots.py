@@ -34,22 +34,15 @@ try:
     import matplotlib.pyplot as plt
     import numpy as np
 except ImportError as missing:
-    if __name__ == "__main__":
-        from rotbeam import _interrupt
-        if _interrupt.interrupted:  # a Ctrl-C broke the import: the interruption, not a missing package
-            sys.exit(130)
-    _HINT = (f"rotbeam.plots needs numpy and matplotlib for {sys.executable} (Debian: apt-get install "
-             f"python3-numpy python3-matplotlib): {missing}")
-    if __name__ == "__main__":
-        print(f"rotbeam: error: {_HINT}", file=sys.stderr)
-        from rotbeam._interrupt import announce_result
+    from rotbeam._interrupt import missing_package
 
-        announce_result(1)
-        sys.exit(1)
-    raise ImportError(_HINT) from None
+    raise missing_package(
+        f"drawing rotbeam's pictures needs numpy and matplotlib for {sys.executable} (Debian: apt-get install "
+        f"python3-numpy python3-matplotlib): {missing}") from None
 
 DEG = "°"
 
+from ._interrupt import error, file_error, run_main, wrote  # noqa: E402
 from ._csv import (EVENT_COLUMNS, EVENT_KINDS, EVENT_OPTIONAL, FORCE_BIN_COLUMNS, PHASES,  # noqa: E402,F401
                    Columns, DamagedFolder, columns_of, read_csv)
 from ._surface import casing_radius, draw_surface, surface_of, surface_words, surface_x  # noqa: E402
@@ -975,12 +968,9 @@ def main(argv=None):
                   file=sys.stderr)
             return 2
     except (DamagedFolder, DamagedBrush, OutputFolderError) as e:
-        print(f"rotbeam: error: {e}", file=sys.stderr)
-        return 2
+        return error(e)
     except OSError as e:  # before ValueError: some OSErrors are not, but say what file and why
-        where = f"{e.filename}: " if e.filename else ""
-        print(f"rotbeam: error: {where}{e.strerror or e}", file=sys.stderr)
-        return 1
+        return file_error(e)
     except ValueError as e:
         if str(e).startswith(str(args.campbell or "\0")) or "cannot write a picture" in str(e):
             print(f"rotbeam: error: {e}", file=sys.stderr)
@@ -991,32 +981,7 @@ def main(argv=None):
         print(f"rotbeam: error: {folder}: damaged or incomplete run files (missing or odd entry {e})"[:400],
               file=sys.stderr)
         return 2
-    for w in written:
-        print(f"wrote {w}")
-    return 0
-
-
-def run_main(main_function):
-    """sys.exit(main_function()), with standard output that cannot be written (a full disk, a
-    closed pipe) reported in one line, exit 1, as by `rotbeam` itself; the code is announced to
-    `rotbeam` first (rotbeam._interrupt.announce_result)."""
-    try:
-        code = main_function()
-        sys.stdout.flush()
-    except OSError as e:
-        if e.errno is None:
-            raise
-        print(f"rotbeam: error: standard output: the results could not be written ({e.strerror})", file=sys.stderr)
-        code = 1
-        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # nothing left to flush at exit
-    except Exception as e:  # anything else: one line and exit 1, never a traceback
-        text = " ".join(f"{type(e).__name__}: {e}".split())[:300]
-        print(f"rotbeam: error: the plotting module failed unexpectedly ({text})", file=sys.stderr)
-        code = 1
-    from rotbeam._interrupt import announce_result
-
-    announce_result(code)
-    sys.exit(code)
+    return wrote(written)
 
 
 if __name__ == "__main__":

@@ -29,6 +29,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from ._csv import DamagedFolder, read_csv  # noqa: E402
+from ._interrupt import error, file_error  # noqa: E402
 from ._surface import draw_surface, surface_of, surface_x  # noqa: E402
 
 MODELS = ("thesis", "physical")
@@ -666,12 +667,9 @@ def main(argv=None):
             return 2
         report = write_report(folder, progress if args.progress else None)
     except DamagedFolder as e:
-        print(f"rotbeam: error: {e}", file=sys.stderr)
-        return 2
+        return error(e)
     except OSError as e:
-        where = f"{e.filename}: " if e.filename else ""
-        print(f"rotbeam: error: {where}{e.strerror or e}", file=sys.stderr)
-        return 1
+        return file_error(e)
     except (ValueError, KeyError, IndexError, TypeError, AttributeError) as e:
         print(f"rotbeam: error: {folder}: damaged or incomplete reproduction files ({type(e).__name__}: {e})"[:400],
               file=sys.stderr)
@@ -685,6 +683,6 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    from .plots import run_main
+    from ._interrupt import run_main
 
     run_main(main)
