@@ -25,15 +25,17 @@ import subprocess  # noqa: E402
 import sys  # noqa: E402
 from pathlib import Path  # noqa: E402
 
-from .plots import (DamagedFolder, case_title, put_in_place, read_csv, read_run,  # noqa: E402
-                    remove_stale_temporaries, temporary_beside)
-from ._surface import draw_surface, outline, reach_m, surface_of, surface_x  # noqa: E402
+# rotbeam._figures first: where matplotlib is missing it says so in one line.
+from ._figures import case_title, put_in_place, remove_stale_temporaries, temporary_beside  # noqa: E402
 
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from PIL import Image  # noqa: E402
 
+from ._csv import DamagedFolder, read_csv  # noqa: E402
 from ._interrupt import error, file_error, wrote  # noqa: E402
+from ._runs import read_run  # noqa: E402
+from ._surface import draw_surface, outline, reach_m, surface_of, surface_x  # noqa: E402
 
 #: Slow motion: a degree of hub angle within `EVENT_HALF_WIDTH_DEG` of an impact, contact start or
 #: separation gets `EVENT_WEIGHT` times the frames of a degree of free flight; one in sustained

@@ -12,13 +12,14 @@ per speed: the brush-stiffness curves brush makers measure).
 import json
 from pathlib import Path
 
-import matplotlib.pyplot as plt
-import numpy as np
+# rotbeam._figures first: where matplotlib is missing it says so in one line.
+from ._figures import DEG, draw_all
 
-from ._csv import read_csv
-from ._surface import surface_words
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
 
-DEG = "°"
+from ._csv import read_csv  # noqa: E402
+from ._surface import surface_words  # noqa: E402
 
 
 class DamagedBrush(Exception):
@@ -142,19 +143,12 @@ def filaments_figure(summary, filaments):
 def brush_figures(folder):
     """[(name, figure)] of a brush folder, every file read and checked before any is drawn."""
     summary, workpiece, profile, filaments = read_brush(folder)
-    figures = []
-    try:
-        figures.append(("brush_force", force_figure(summary, workpiece)))
-        figures.append(("brush_profile", profile_figure(summary, profile)))
-        figures.append(("brush_filaments", filaments_figure(summary, filaments)))
-    except BaseException:
-        for _, fig in figures:
-            plt.close(fig)
-        raise
-    return figures
+    return draw_all((("brush_force", lambda: force_figure(summary, workpiece)),
+                     ("brush_profile", lambda: profile_figure(summary, profile)),
+                     ("brush_filaments", lambda: filaments_figure(summary, filaments))))
 
 
-# brush_map.png of a sweep over brushes (rotbeam.plots.metrics_figure draws it as the sweep's
+# brush_map.png of a sweep over brushes (rotbeam.sweep_plots.metrics_figure draws it as the sweep's
 # metrics): six of sweep.csv's brush columns, (column, scale, axis label).
 BRUSH_MAP_PANELS = [
     ("mean_normal_force_n", 1, "mean normal force (N)"),

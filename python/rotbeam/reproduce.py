@@ -22,14 +22,15 @@ if __name__ == "__main__":
     stop_quietly_on_interrupt()
     announce_start()
 
-# rotbeam.plots first: where numpy or matplotlib is missing it says so in one line.
-from .plots import DEG, force_bins, save_figure  # noqa: E402
+# rotbeam._figures first: where numpy or matplotlib is missing it says so in one line.
+from ._figures import DEG, save_figure  # noqa: E402
 
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from ._csv import DamagedFolder, read_csv  # noqa: E402
 from ._interrupt import error, file_error  # noqa: E402
+from ._runs import force_bins, impact_impulses, sustained_force  # noqa: E402
 from ._surface import draw_surface, surface_of, surface_x  # noqa: E402
 
 MODELS = ("thesis", "physical")
@@ -74,12 +75,7 @@ class Runs:
         return self._runs[key]
 
 
-def impacts_of(events):
-    """(θ (°), tip Y (m), |P| (N·s)) of the impacts in events.csv."""
-    if not len(events.get("kind", [])):
-        return np.array([]), np.array([]), np.array([])
-    imp = events["kind"] == "impact"
-    return (events["theta_deg"][imp], events["y_tip_m"][imp], np.abs(events["impulse_n_s"][imp]))
+impacts_of = impact_impulses  # (θ (°), tip Y (m), |P| (N·s)) of the impacts in events.csv
 
 
 def metrics(run):
@@ -220,10 +216,7 @@ def group_label(labels):
     return (f"{common} = {values}" if common else values) + " (the same pass)"
 
 
-def contact_rows(h):
-    """F_n against Y (mm) on the rows in sustained contact (NaN elsewhere, so episodes do not join)."""
-    pressed = np.isin(h["phase"], ["contact", "stick"])
-    return np.where(pressed, h["y_tip_m"] * 1e3, np.nan), np.where(pressed, h["normal_force_n"], np.nan)
+contact_rows = sustained_force  # F_n against Y (mm) on the rows in sustained contact, NaN elsewhere
 
 
 def panel_message(ax, text, where="center"):
