@@ -6,6 +6,7 @@ cases=True the pictures of every case.
 """
 
 import json
+from dataclasses import replace
 from pathlib import Path
 
 # rotbeam._figures first: where matplotlib is missing it says so in one line.
@@ -14,7 +15,8 @@ from ._figures import DEG, draw_all, legend_beside, save_figures, series_styles,
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from ._csv import DamagedFolder, read_csv  # noqa: E402
+from . import _core  # noqa: E402
+from ._csv import FILES, DamagedFolder, read_csv  # noqa: E402
 from ._runs import check_run_files, read_run  # noqa: E402
 from .brush_plots import BRUSH_MAP_PANELS, brush_figures, read_brush  # noqa: E402
 from .rub_map import is_rub_sweep, rub_map_figure  # noqa: E402
@@ -48,13 +50,21 @@ def sweep_keys(table):
     return columns[columns.index("folder") + 1:columns.index("status")]
 
 
+def read_sweep_csv(folder):
+    """A sweep folder's sweep.csv (rotbeam._csv.read_csv): the metrics the library writes
+    (_core.sweep_metrics, of filaments and of brushes) read as numbers, empty where a case has no
+    result; the varied keys as numbers where every value is one, text otherwise."""
+    metrics = tuple(m[0] for brush in (False, True) for m in _core.sweep_metrics(brush))
+    return read_csv(Path(folder) / "sweep.csv", replace(FILES["sweep.csv"], optional=metrics))
+
+
 def read_sweep(folder, table=None):
     """(table, keys, ok) of a sweep folder: sweep.csv's columns (`table`, when read already), the
     varied keys and which cases have results (done, resumed, or failed: stopped on a diagnosed
     failure, their files kept). A case with results whose files are missing or damaged raises
     DamagedFolder."""
     folder = Path(folder)
-    table = read_csv(folder / "sweep.csv") if table is None else table
+    table = read_sweep_csv(folder) if table is None else table
     ok = np.isin(table["status"], ["done", "resumed", "failed"])
     for f, good in zip(table["folder"], ok):
         if good:  # a case with results must have its files: a missing or damaged one is named
@@ -190,7 +200,7 @@ def plot_sweep(folder, out, cases=False):
     """The pictures of a sweep folder into out; every case with results is read and checked first
     (read_run), so a damaged one is named before the folder out is made and anything is written."""
     folder, out = Path(folder), Path(out)
-    table = read_csv(folder / "sweep.csv")
+    table = read_sweep_csv(folder)
     if "force_ratio" in table:  # a sweep over brushes (docs/brush.md)
         # A brush with a failed filament has sums without it: only whole brushes are drawn.
         ok = np.isin(table["status"], ["done", "resumed"])
