@@ -174,26 +174,13 @@ def _arguments(config, overrides):
     return path, sets
 
 
-def _table_arrays(text, ints=("revolution", "impacts", "contact_episodes"), bools=("complete",), words=()):
-    """A CSV table's text (revolutions.csv, force_bins.csv, the brush's tables) as {column: numpy
-    array}: the columns named in `ints` as integers, in `bools` as booleans (true/false), in `words`
-    as strings, the others as floats ("nan" included); empty arrays for a table without rows."""
-    import numpy as np
-    lines = text.decode().splitlines()
-    names = lines[0].split(",")
-    rows = [line.split(",") for line in lines[1:]]
-    out = {}
-    for k, name in enumerate(names):
-        values = [r[k] for r in rows]
-        if name in ints:
-            out[name] = np.array([int(v) for v in values], dtype=np.int64)
-        elif name in bools:
-            out[name] = np.array([v == "true" for v in values], dtype=bool)
-        elif name in words:
-            out[name] = np.array(values, dtype=str)
-        else:
-            out[name] = np.array([float(v) for v in values], dtype=float)
-    return out
+def _table_arrays(text, name):
+    """A table the library returned, the text of its file `name` (revolutions.csv, force_bins.csv, the
+    brush's tables), as {column: numpy array} by rotbeam._csv.read_csv: whole numbers as integers,
+    true/false as booleans, words as strings, the others as floats; empty arrays for a table
+    without rows."""
+    from ._csv import read_csv
+    return read_csv(name, data=text)
 
 
 class Result:
@@ -267,7 +254,8 @@ def run(config: ConfigLike = None, overrides: Overrides = None) -> Result:
     """
     path, sets = _arguments(config, overrides)
     summary, history, events, revolutions, force_bins = _core.run(path, sets)
-    return Result(summary, history, events, _table_arrays(revolutions), _table_arrays(force_bins))
+    return Result(summary, history, events, _table_arrays(revolutions, "revolutions.csv"),
+                  _table_arrays(force_bins, "force_bins.csv"))
 
 
 class BrushResult:
@@ -314,10 +302,8 @@ def brush(config: ConfigLike = None, overrides: Overrides = None, jobs: int = 0)
         raise TypeError(f"jobs must be a whole number of threads (0: all cores), not {jobs!r}")
     path, sets = _arguments(config, overrides)
     summary, workpiece, profile, filaments = _core.brush(path, sets, jobs)
-    bins = {"ints": ("impacts",), "bools": ()}
-    return BrushResult(summary, _table_arrays(workpiece, **bins), _table_arrays(profile, **bins),
-                       _table_arrays(filaments, ints=("filament", "row", "position", "distinct", "period_revolutions",
-                                                      "revolutions_run"), bools=("reaches",), words=("status",)))
+    return BrushResult(summary, _table_arrays(workpiece, "workpiece.csv"), _table_arrays(profile, "profile.csv"),
+                       _table_arrays(filaments, "filaments.csv"))
 
 
 def impact(config: ConfigLike = None, overrides: Overrides = None) -> dict[str, Any] | None:

@@ -27,9 +27,8 @@ PROBE_CASES = 4
 def axes_of(vary: Mapping[str, Any], toml_value: Callable[[Any, str], str]) -> list[tuple[str, list[str]]]:
     """[(key, [TOML literals])] of `vary`: each value a list (tuple, range, numpy array) of Python
     values, or a string in `--vary` syntax ("550,1000" or "0.1:0.7:4"), or one number or boolean."""
-    from . import ConfigError
     if not isinstance(vary, Mapping) or not vary:
-        raise ConfigError("vary: give a dict of keys and their values, e.g. {\"hub.speed_rpm\": [550, 3000]}")
+        raise _core.ConfigError("vary: give a dict of keys and their values, e.g. {\"hub.speed_rpm\": [550, 3000]}")
     axes = []
     for key, values in vary.items():
         if not isinstance(key, str):
@@ -43,7 +42,7 @@ def axes_of(vary: Mapping[str, Any], toml_value: Callable[[Any, str], str]) -> l
         try:
             items = list(values)
         except TypeError:
-            raise ConfigError(f"vary {key}: {values!r} is not a list of values") from None
+            raise _core.ConfigError(f"vary {key}: {values!r} is not a list of values") from None
         axes.append((key, [toml_value(v, f"vary {key}") for v in items]))
     return axes
 
@@ -80,10 +79,9 @@ def run_bundle(text: str | None, name: str, overrides: Sequence[tuple[str, str]]
     """A Dask task: the cases `indices` of the grid, one after the other (the workers' threads run
     tasks side by side): (the worker's rotbeam version, the rows with each case's seconds, the
     seconds the task took)."""
-    from . import __version__
     start = time.perf_counter()
     rows = _core.sweep_run(None, text, name, list(overrides), list(axes), list(indices), 1, None)
-    return __version__, rows, time.perf_counter() - start
+    return _core.__version__, rows, time.perf_counter() - start
 
 
 def run_on_dask(client: Any, path: str | None, overrides: Sequence[tuple[str, str]], axes: Sequence[tuple[str, list[str]]],
@@ -100,7 +98,6 @@ def run_on_dask(client: Any, path: str | None, overrides: Sequence[tuple[str, st
     later costs only its tasks under way. Ctrl-C cancels the tasks and raises KeyboardInterrupt.
     `log` gets (cases, seconds) of each task, in the order they finished."""
     from distributed import as_completed, wait
-    from . import __version__
     text, name = None, ""
     if path is not None:  # the file's text travels: its path may not exist on the workers
         with open(path, encoding="utf-8") as f:
@@ -120,8 +117,8 @@ def run_on_dask(client: Any, path: str | None, overrides: Sequence[tuple[str, st
 
     def take(future):
         version, got, seconds = future.result()
-        if version != __version__:
-            raise RuntimeError(f"a Dask worker runs rotbeam {version}, this process {__version__}: install the "
+        if version != _core.__version__:
+            raise RuntimeError(f"a Dask worker runs rotbeam {version}, this process {_core.__version__}: install the "
                                "same version everywhere (results of two versions are not one study)")
         for i, row in zip(cases_of[future.key], got):
             rows[i] = tuple(row[:3])

@@ -7,14 +7,14 @@ xarray (and pandas) are imported here, not by `import rotbeam`: the rest of the 
 
 from __future__ import annotations
 
-import csv
-import io
 import json
 import math
 import tomllib
 from typing import Any, Mapping, Sequence
 
 import numpy as np
+
+from ._csv import Columns, read_csv
 
 try:
     import xarray as xr
@@ -181,28 +181,24 @@ def read_index(description: Mapping[str, Any], metrics: Sequence[tuple[str, str,
                where: str) -> dict[int, tuple[str, list[float], str]]:
     """The rows of sweep.csv's text by 0-based case index: (status, metric values, message), after
     checking its columns against the description and the metric table (DamagedSweep naming `where`)."""
-    reader = csv.reader(io.StringIO(text, newline=""))
-    try:
-        header = next(reader)
-    except StopIteration:
-        raise DamagedSweep(f"{where}: empty") from None
     keys = [a["key"] for a in description["axes"]]
-    expected = ["case", "folder", *keys, "status", *[m[0] for m in metrics], "message"]
-    if header != expected:
-        raise DamagedSweep(f"{where}: its columns are not those of the sweep its sweep.json describes")
+    names = [m[0] for m in metrics]
+    expected = ["case", "folder", *keys, "status", *names, "message"]
+
+    def check_header(header):
+        if header != expected:
+            raise DamagedSweep(f"{where}: its columns are not those of the sweep its sweep.json describes")
+
+    spec = Columns(tuple(expected), text=("folder", *keys, "status", "message"), ints=("case",), optional=tuple(names))
+    table = read_csv(where, spec, data=text, error=DamagedSweep, check_header=check_header)
     n = int(description["cases"])
+    values = np.column_stack([table[m] for m in names]).tolist() if names else [[] for _ in table["case"]]
     rows = {}
-    for line, fields in enumerate(reader, start=2):
-        if len(fields) != len(header):
-            raise DamagedSweep(f"{where}: line {line} has {len(fields)} fields, the header {len(header)}")
-        try:
-            case = int(fields[0])
-            vals = [float(v) if v != "" else math.nan for v in fields[3 + len(keys):-1]]
-        except ValueError as e:
-            raise DamagedSweep(f"{where}: line {line}: {e}") from None
+    for line, (case, status, vals, message) in enumerate(zip(table["case"].tolist(), table["status"], values,
+                                                             table["message"]), start=2):
         if not 1 <= case <= n:
             raise DamagedSweep(f"{where}: line {line}: case {case} is not in the grid of {n} cases")
-        rows[case - 1] = (fields[2 + len(keys)], vals, fields[-1])
+        rows[case - 1] = (str(status), vals, str(message))
     return rows
 
 

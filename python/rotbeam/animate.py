@@ -20,18 +20,22 @@ if __name__ == "__main__":
 import argparse  # noqa: E402
 import json  # noqa: E402
 import math  # noqa: E402
-import os  # noqa: E402
 import shutil  # noqa: E402
 import subprocess  # noqa: E402
 import sys  # noqa: E402
 from pathlib import Path  # noqa: E402
 
-from .plots import (DamagedFolder, case_title, put_in_place, read_csv, read_run,  # noqa: E402
-                    remove_stale_temporaries, surface_of, surface_x, draw_surface, temporary_beside)
+# rotbeam._figures first: where matplotlib is missing it says so in one line.
+from ._figures import case_title, put_in_place, remove_stale_temporaries, temporary_beside  # noqa: E402
 
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from PIL import Image  # noqa: E402
+
+from ._csv import DamagedFolder, read_csv  # noqa: E402
+from ._interrupt import error, file_error, wrote  # noqa: E402
+from ._runs import read_run  # noqa: E402
+from ._surface import draw_surface, outline, reach_m, surface_of, surface_x  # noqa: E402
 
 #: Slow motion: a degree of hub angle within `EVENT_HALF_WIDTH_DEG` of an impact, contact start or
 #: separation gets `EVENT_WEIGHT` times the frames of a degree of free flight; one in sustained
@@ -136,9 +140,9 @@ def filament_frames(folder, rows=None, points=41, magnify=1.0, history=None, sum
     folder = Path(folder)
     if summary is None:
         summary = json.loads((folder / "summary.json").read_text())
-    if history is None:
-        history = read_csv(folder / "history.csv")
     n = summary["config"]["beam"]["modes"]
+    if history is None:
+        history = read_csv(folder / "history.csv", modes=n)
     rows = np.arange(len(history["t_s"])) if rows is None else np.asarray(rows)
     q = np.column_stack([history[f"q{i + 1}_m"][rows] for i in range(n)])
     xi = np.linspace(0.0, 1.0, points)
@@ -208,12 +212,8 @@ def animate(folder, output=None, frames=None, frames_per_degree=None, window=Non
     shape = filament_frames(folder, rows, magnify=magnify, history=history, summary=summary)
     c = summary["config"]
     surface = surface_of(summary)
-    L = c["beam"]["length_m"]
     # How far the tip reaches into the surface: the zoom's scale.
-    s = c["surface"]
-    depth = (max(abs(s["clearance_m"]), 2 * s.get("lobe_amplitude_m", 0.0), 1e-4) if s.get("shape") == "casing"
-             else s["depth_fraction"] * L)
-    zoom = (zoom_mm if zoom_mm is not None else max(2.5, 3e3 * depth)) * 1e-3
+    zoom = (zoom_mm if zoom_mm is not None else max(2.5, 3e3 * reach_m(c))) * 1e-3
     if not zoom > 0:
         raise ValueError(f"zoom = {zoom_mm:g} mm: must be positive")
 
@@ -256,8 +256,7 @@ def animate(folder, output=None, frames=None, frames_per_degree=None, window=Non
     if casing:  # the casing all round the hub (the view shows the part the filament sweeps)
         draw_surface(ax, surface, None, color="0.3", lw=1)
     else:
-        surface_y = np.linspace(xmin - pad, xmax + pad, 200)
-        surface_h = -surface_x(surface, surface_y * 1e-3) * 1e3
+        surface_y, surface_h = outline(surface, [xmin - pad, xmax + pad])
         ax.fill_between(surface_y, surface_h, ymin - 3 * pad, color="0.55", alpha=0.5, lw=0)
         ax.plot(surface_y, surface_h, color="0.3", lw=1)
     ax.set_xlabel("Y (mm)")
@@ -469,21 +468,16 @@ def main(argv=None):
                           window=args.window, zoom_mm=args.zoom, magnify=args.magnify, fps=args.fps,
                           note=lambda text: print(f"rotbeam: note: {text}", file=sys.stderr))
     except DamagedFolder as e:
-        print(f"rotbeam: error: {e}", file=sys.stderr)
-        return 2
+        return error(e)
     except OSError as e:
-        where = f"{e.filename}: " if e.filename else ""
-        print(f"rotbeam: error: {where}{e.strerror or e}", file=sys.stderr)
-        return 1
+        return file_error(e)
     except (ValueError, KeyError, IndexError) as e:
         print(f"rotbeam: error: {e}"[:400], file=sys.stderr)
         return 2
-    for w in written:
-        print(f"wrote {w}")
-    return 0
+    return wrote(written)
 
 
 if __name__ == "__main__":
-    from rotbeam.plots import run_main
+    from rotbeam._interrupt import run_main
 
     run_main(main)

@@ -12,52 +12,18 @@ per speed: the brush-stiffness curves brush makers measure).
 import json
 from pathlib import Path
 
-import matplotlib.pyplot as plt
-import numpy as np
+# rotbeam._figures first: where matplotlib is missing it says so in one line.
+from ._figures import DEG, draw_all
 
-DEG = "°"
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from ._csv import read_csv  # noqa: E402
+from ._surface import surface_words  # noqa: E402
 
 
 class DamagedBrush(Exception):
     """A brush folder whose files are not those its summary.json describes."""
-
-
-def _read_table(path):
-    """A CSV table as {column: array}: numbers as floats, "true"/"false" as booleans, other words as
-    strings; a row with the wrong number of fields raises DamagedBrush naming the file and line."""
-    lines = Path(path).read_text().splitlines()
-    if not lines:
-        raise DamagedBrush(f"{path}: empty")
-    names = lines[0].split(",")
-    rows = []
-    for i, line in enumerate(lines[1:], start=2):
-        fields = line.split(",")
-        if len(fields) != len(names):
-            raise DamagedBrush(f"{path}: line {i} has {len(fields)} fields where the header names {len(names)}")
-        rows.append(fields)
-    out = {}
-    for k, name in enumerate(names):
-        values = [r[k] for r in rows]
-        if values and all(v in ("true", "false") for v in values):
-            out[name] = np.array([v == "true" for v in values])
-            continue
-        try:
-            out[name] = np.array([float(v) for v in values], dtype=float)
-        except ValueError:
-            if name in ("status",):
-                out[name] = np.array(values, dtype=str)
-            else:
-                bad = next(v for v in values if not _is_number(v))
-                raise DamagedBrush(f"{path}: column {name} holds {bad!r}, not a number") from None
-    return out
-
-
-def _is_number(v):
-    try:
-        float(v)
-        return True
-    except ValueError:
-        return False
 
 
 def read_brush(folder):
@@ -77,7 +43,8 @@ def read_brush(folder):
         if path.stat().st_size != entry.get("bytes"):
             raise DamagedBrush(f"{path}: {path.stat().st_size} bytes where summary.json records {entry.get('bytes')}: "
                                "the folder holds files of different runs, or a damaged one")
-    tables = [_read_table(folder / name) for name in ("workpiece.csv", "profile.csv", "filaments.csv")]
+    tables = [read_csv(folder / name, error=DamagedBrush)
+              for name in ("workpiece.csv", "profile.csv", "filaments.csv")]
     return (summary, *tables)
 
 
@@ -85,8 +52,8 @@ def _title(summary):
     c = summary["config"]
     b = c["brush"]
     return (f"Brush of {summary['filaments']} filaments ({b['filaments']} around × {b['rows']} rows, "
-            f"{summary['distinct_filaments']} distinct), {c['hub']['speed_rpm']:g} rpm, depth "
-            f"{100 * c['surface']['depth_fraction']:g} %, μ = {c['surface']['friction']:g}")
+            f"{summary['distinct_filaments']} distinct), {c['hub']['speed_rpm']:g} rpm, {surface_words(c)}, "
+            f"μ = {c['surface']['friction']:g}")
 
 
 def _centres(table):
@@ -176,19 +143,12 @@ def filaments_figure(summary, filaments):
 def brush_figures(folder):
     """[(name, figure)] of a brush folder, every file read and checked before any is drawn."""
     summary, workpiece, profile, filaments = read_brush(folder)
-    figures = []
-    try:
-        figures.append(("brush_force", force_figure(summary, workpiece)))
-        figures.append(("brush_profile", profile_figure(summary, profile)))
-        figures.append(("brush_filaments", filaments_figure(summary, filaments)))
-    except BaseException:
-        for _, fig in figures:
-            plt.close(fig)
-        raise
-    return figures
+    return draw_all((("brush_force", lambda: force_figure(summary, workpiece)),
+                     ("brush_profile", lambda: profile_figure(summary, profile)),
+                     ("brush_filaments", lambda: filaments_figure(summary, filaments))))
 
 
-# brush_map.png of a sweep over brushes (rotbeam.plots.metrics_figure draws it as the sweep's
+# brush_map.png of a sweep over brushes (rotbeam.sweep_plots.metrics_figure draws it as the sweep's
 # metrics): six of sweep.csv's brush columns, (column, scale, axis label).
 BRUSH_MAP_PANELS = [
     ("mean_normal_force_n", 1, "mean normal force (N)"),

@@ -87,20 +87,7 @@ def main(argv=None) -> int:
     return 0
 
 
-def run_main() -> None:
-    """sys.exit(main()) with the code announced to `rotbeam` first; anything unexpected is one line
-    and exit 1, never a traceback."""
-    try:
-        code = main()
-    except Exception as e:
-        text = " ".join(f"{type(e).__name__}: {e}".split())[:300]
-        print(f"rotbeam: error: the netCDF writer failed unexpectedly ({text})", file=sys.stderr)
-        code = 1
-    from rotbeam._interrupt import announce_result
-
-    announce_result(code)
-    sys.exit(code)
-
-
 if __name__ == "__main__":
-    run_main()
+    from rotbeam._interrupt import run_main
+
+    run_main(main, "the netCDF writer")

@@ -10,7 +10,6 @@ contact rows of history.csv where a run has none) puts impacts and sustained con
 """
 
 import argparse
-import csv
 import json
 import math
 import re
@@ -23,11 +22,16 @@ if __name__ == "__main__":
     stop_quietly_on_interrupt()
     announce_start()
 
-# rotbeam.plots first: where numpy or matplotlib is missing it says so in one line.
-from .plots import DEG, draw_surface, force_bins, save_figure, surface_of, surface_x  # noqa: E402
+# rotbeam._figures first: where numpy or matplotlib is missing it says so in one line.
+from ._figures import DEG, save_figure  # noqa: E402
 
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+from ._csv import DamagedFolder, read_csv  # noqa: E402
+from ._interrupt import error, file_error  # noqa: E402
+from ._runs import force_bins, impact_impulses, sustained_force  # noqa: E402
+from ._surface import draw_surface, surface_of, surface_x  # noqa: E402
 
 MODELS = ("thesis", "physical")
 MODEL_TITLES = {"thesis": "thesis scheme, force |λ|·|∇C|", "physical": "default model, F_n = −λ"}
@@ -43,22 +47,9 @@ def mathtext(text):
 
 
 def read_table(path, columns=None):
-    """A CSV file as {column: numpy array} (floats, or strings for a text column); only `columns`
-    when given (those the file has)."""
-    with open(path, newline="") as f:
-        reader = csv.reader(f)
-        header = next(reader, [])
-        rows = list(reader)
-    wanted = [c for c in header if columns is None or c in columns]
-    table = {}
-    for c in wanted:
-        k = header.index(c)
-        values = [r[k] if k < len(r) else "" for r in rows]
-        try:
-            table[c] = np.array([float(v) if v != "" else math.nan for v in values])
-        except ValueError:
-            table[c] = np.array(values)
-    return table
+    """A CSV file of a run as {column: numpy array} (rotbeam._csv.read_csv: read whole and checked);
+    only `columns` when given."""
+    return read_csv(path, only=columns)
 
 
 class Runs:
@@ -84,12 +75,7 @@ class Runs:
         return self._runs[key]
 
 
-def impacts_of(events):
-    """(θ (°), tip Y (m), |P| (N·s)) of the impacts in events.csv."""
-    if not len(events.get("kind", [])):
-        return np.array([]), np.array([]), np.array([])
-    imp = events["kind"] == "impact"
-    return (events["theta_deg"][imp], events["y_tip_m"][imp], np.abs(events["impulse_n_s"][imp]))
+impacts_of = impact_impulses  # (θ (°), tip Y (m), |P| (N·s)) of the impacts in events.csv
 
 
 def metrics(run):
@@ -230,10 +216,7 @@ def group_label(labels):
     return (f"{common} = {values}" if common else values) + " (the same pass)"
 
 
-def contact_rows(h):
-    """F_n against Y (mm) on the rows in sustained contact (NaN elsewhere, so episodes do not join)."""
-    pressed = np.isin(h["phase"], ["contact", "stick"])
-    return np.where(pressed, h["y_tip_m"] * 1e3, np.nan), np.where(pressed, h["normal_force_n"], np.nan)
+contact_rows = sustained_force  # F_n against Y (mm) on the rows in sustained contact, NaN elsewhere
 
 
 def panel_message(ax, text, where="center"):
@@ -676,10 +659,10 @@ def main(argv=None):
                   file=sys.stderr)
             return 2
         report = write_report(folder, progress if args.progress else None)
+    except DamagedFolder as e:
+        return error(e)
     except OSError as e:
-        where = f"{e.filename}: " if e.filename else ""
-        print(f"rotbeam: error: {where}{e.strerror or e}", file=sys.stderr)
-        return 1
+        return file_error(e)
     except (ValueError, KeyError, IndexError, TypeError, AttributeError) as e:
         print(f"rotbeam: error: {folder}: damaged or incomplete reproduction files ({type(e).__name__}: {e})"[:400],
               file=sys.stderr)
@@ -693,6 +676,6 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    from .plots import run_main
+    from ._interrupt import run_main
 
     run_main(main)

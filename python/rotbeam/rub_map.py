@@ -1,14 +1,21 @@
-"""The rub map of a sweep over hub speed with a casing (docs/surfaces.md): the last complete
-revolution's response of every case (peak tip deflection, peak contact force, impulse, friction
-work, impacts) against speed, under the Campbell diagram whose engine-order crossings
-k·Ω = ω_j(Ω) mark where a casing of k lobes excites a mode. Read from sweep.csv alone: the
-natural frequencies are its f1_hz … f3_hz columns, each case's own."""
+"""Campbell diagrams: of `rotbeam modes --csv` (plot_campbell), and the rub map of a sweep over hub
+speed with a casing (docs/surfaces.md): the last complete revolution's response of every case (peak
+tip deflection, peak contact force, impulse, friction work, impacts) against speed, under the
+Campbell diagram whose engine-order crossings k·Ω = ω_j(Ω) mark where a casing of k lobes excites a
+mode. The rub map is read from sweep.csv alone: the natural frequencies are its f1_hz … f3_hz
+columns, each case's own."""
 
 import json
 from pathlib import Path
 
-import matplotlib.pyplot as plt
-import numpy as np
+# rotbeam._figures first: where matplotlib is missing it says so in one line.
+from ._figures import save_figure, value_text
+
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from ._csv import Columns, read_csv  # noqa: E402
+from ._surface import casing_words  # noqa: E402
 
 SPEED = "hub.speed_rpm"
 
@@ -22,16 +29,20 @@ RESPONSE_PANELS = [
 ]
 
 
+def _surface_in(folder, case):
+    """The surface (summary.json `surface`) of a case's folder, {} for a run without one, None when
+    its summary.json cannot be read."""
+    try:
+        return json.loads((Path(folder) / case / "summary.json").read_text()).get("surface", {})
+    except (OSError, ValueError):
+        return None
+
+
 def casing_of(folder, table, ok):
     """The surface (summary.json `surface`) of the first case with results when it is a casing, else None."""
-    for f, good in zip(table["folder"], ok):
-        if good:
-            try:
-                surface = json.loads((Path(folder) / f / "summary.json").read_text()).get("surface", {})
-            except (OSError, ValueError):
-                return None
-            return surface if surface.get("shape") == "casing" else None
-    return None
+    first = next((f for f, good in zip(table["folder"], ok) if good), None)
+    surface = _surface_in(folder, first) if first is not None else None
+    return surface if surface and surface.get("shape") == "casing" else None
 
 
 def is_rub_sweep(folder, table, keys, ok):
@@ -65,30 +76,46 @@ def crossings(speeds_rpm, frequencies_hz, order):
 MODE_COLORS = ["k", "0.45", "0.7"]
 
 
-def casing_words(surface):
-    """'clearance 0.1 mm, 2 cosine lobes of 0.3 mm' for a title."""
-    lobes = int(surface.get("lobes", 0))
-    shape = (f", {lobes} {surface.get('lobe_law', 'cosine')} lobe{'s' if lobes != 1 else ''} of "
-             f"{1e3 * surface.get('lobe_amplitude_m', 0):g} mm" if lobes else ", concentric")
-    return f"clearance {1e3 * surface.get('clearance_m', 0):g} mm{shape}"
-
-
 def casings(folder, table, ok):
     """The distinct casings (summary.json `surface`) of the cases with results, in sweep order."""
     out = []
     for f, good in zip(table["folder"], ok):
-        if good:
-            try:
-                s = json.loads((Path(folder) / f / "summary.json").read_text()).get("surface", {})
-            except (OSError, ValueError):
-                continue
-            if s.get("shape") == "casing" and s not in out:
-                out.append(s)
+        s = _surface_in(folder, f) if good else None
+        if s and s.get("shape") == "casing" and s not in out:
+            out.append(s)
     return out
 
 
-def value_words(v):
-    return f"{v:g}" if isinstance(v, (float, np.floating)) else str(v)
+def engine_order_lines(ax, speeds, orders, top):
+    """The engine orders f = k·rpm/60 dashed over `speeds` (rpm), each named k× at its end, below `top` (Hz)."""
+    for order in orders:
+        ax.plot(speeds, order * speeds / 60.0, "k--", lw=0.7, alpha=0.6)
+        x_end = min(speeds[-1], top * 60.0 / order)
+        ax.annotate(f"{order}×", (x_end, order * x_end / 60.0), fontsize=8, ha="right", va="bottom")
+
+
+def plot_campbell(csv_path, png_path, orders=(1, 2, 3, 5, 10, 20)):
+    """Campbell diagram from `rotbeam modes --csv`: frequencies against speed with engine orders."""
+    table = read_csv(csv_path, Columns(("speed_rpm",)))
+    speeds = table["speed_rpm"]
+    modes = sorted((k for k in table if k.endswith("_hz")), key=lambda k: int(k[1:-3]))
+    fig, ax = plt.subplots(figsize=(8, 5.5))
+    for k in modes:
+        ax.plot(speeds, table[k], lw=2, label=f"mode {k[1:-3]}")
+    top = max(np.nanmax(table[k]) for k in modes) * 1.3
+    engine_order_lines(ax, np.linspace(0, speeds.max(), 200), orders, top)
+    ax.set_yscale("log")
+    ax.set_ylim(max(1.0, 0.5 * np.nanmin(table[modes[0]])), top)
+    ax.set_xlabel("hub speed (rpm)")
+    ax.set_ylabel("natural frequency (Hz)")
+    ax.set_title("Campbell diagram: in-plane modes of the spinning filament\n(dashed: engine orders f = k·rpm/60)",
+                 fontsize=10)
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    fig.tight_layout()
+    save_figure(fig, png_path)
+    plt.close(fig)
+    return [Path(png_path)]
 
 
 def rub_map_figure(folder, table, keys, ok, note=""):
@@ -130,10 +157,8 @@ def rub_map_figure(folder, table, keys, ok, note=""):
         top = max(top, float(np.nanmax(f)))
     top = max(top, min(reach, 1.5 * top)) * 1.1 if top > 0 else 1.0
     crossing_speeds = []
+    engine_order_lines(campbell, s_sorted, orders, 0.88 * top)
     for o in orders:
-        campbell.plot(s_sorted, o * s_sorted / 60.0, "k--", lw=0.7, alpha=0.6)
-        x_end = min(s_sorted[-1], 0.88 * top * 60.0 / o)
-        campbell.annotate(f"{o}×", (x_end, o * x_end / 60.0), fontsize=8, ha="right", va="bottom")
         for j, c in enumerate(modes):
             for x in crossings(s_sorted, table[c].astype(float)[order], o):
                 if not o * x / 60.0 < top:
@@ -164,7 +189,7 @@ def rub_map_figure(folder, table, keys, ok, note=""):
             for k, v in zip(rest, g):
                 sel &= table[k] == v
             o = np.argsort(speed[sel])
-            name = ", ".join(f"{k} = {value_words(v)}" for k, v in zip(rest, g)) or None
+            name = ", ".join(f"{k} = {value_text(v)}" for k, v in zip(rest, g)) or None
             xs, ys, st = speed[sel][o], table[column][sel][o].astype(float) * scale, steady[sel][o]
             ax.plot(xs, ys, lw=1, label=name, **dict(style, marker=None))
             ax.plot(xs[~st], ys[~st], ls="none", marker=style["marker"], ms=4, mfc="white", color=style["color"])

@@ -1,0 +1,208 @@
+"""What every picture of rotbeam shares: matplotlib (Agg; a missing one said in one line), pictures
+written whole (a temporary file beside the target, renamed into place), the titles' words, the
+series' styles and a legend beside the panels.
+
+The picture modules sit on this one and never on each other's command line: run_plots (a run),
+sweep_plots (a sweep), rub_map (Campbell diagrams and the rub map), brush_plots (a brush),
+animate, reproduce; plots is the command line and names them all.
+"""
+
+import errno
+import os
+import shutil
+import sys
+import tempfile
+from pathlib import Path
+
+from . import _interrupt
+
+try:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+except ImportError as missing:
+    raise _interrupt.missing_package(
+        f"drawing rotbeam's pictures needs numpy and matplotlib for {sys.executable} (Debian: apt-get install "
+        f"python3-numpy python3-matplotlib): {missing}") from None
+
+from ._surface import surface_words  # noqa: E402
+
+DEG = "°"
+
+
+class OutputFolderError(Exception):
+    """The folder the pictures go to cannot be made (the message names it and why)."""
+
+
+def remove_stale_temporaries(path):
+    """Removes the temporaries `.NAME.PID.tmp[.EXT]` that a killed writer of `path` left beside it
+    (its process is gone); those of a live writer, and every other file, are left alone."""
+    path = Path(path)
+    prefix = f".{path.stem if path.suffix in ('.gif', '.mp4') else path.name}."
+    try:
+        entries = list(path.parent.iterdir())
+    except OSError:
+        return
+    for entry in entries:
+        name = entry.name
+        if not name.startswith(prefix):
+            continue
+        rest = name[len(prefix):].split(".")
+        if len(rest) < 2 or not rest[0].isdigit() or rest[1] != "tmp" or len(rest) > 3:
+            continue
+        try:
+            os.kill(int(rest[0]), 0)
+        except ProcessLookupError:
+            try:
+                entry.unlink()
+            except OSError:
+                pass
+        except OSError:
+            pass
+
+
+def output_target(path):
+    """The file that writing to path replaces: the file a symbolic link names (the link stays), or
+    path itself. None for a node that is not a regular file (a device, a pipe, /dev/stdout): that
+    one is written into, never replaced."""
+    path = Path(path)
+    if path.exists() and not path.is_file():
+        if path.is_dir():
+            raise IsADirectoryError(errno.EISDIR, os.strerror(errno.EISDIR), str(path))
+        return None
+    return Path(os.path.realpath(path))
+
+
+def put_in_place(tmp, path):
+    """Puts the finished temporary tmp (made beside output_target(path)) at path."""
+    target = output_target(path)
+    if target is None:
+        with open(tmp, "rb") as src, open(path, "wb") as dst:
+            shutil.copyfileobj(src, dst)
+        Path(tmp).unlink()
+    else:
+        os.replace(tmp, target)
+
+
+def temporary_beside(path, stem=False, suffix=""):
+    """A temporary name `.NAME.PID.tmp[SUFFIX]` (NAME: the name, or its stem) beside the file that
+    writing to path replaces (see output_target; the temporary folder for a device)."""
+    path = Path(path)
+    target = output_target(path) or Path(tempfile.gettempdir()) / path.name
+    return target.with_name(f".{target.stem if stem else target.name}.{os.getpid()}.tmp{suffix}")
+
+
+def save_figure(fig, path, dpi=120):
+    """Writes fig to path whole: into a temporary file beside it, renamed into place (an interrupted
+    or failed save leaves no partial picture under the user's name)."""
+    path = Path(path)
+    fmt = path.suffix.lstrip(".").lower() or "png"
+    if fmt not in fig.canvas.get_supported_filetypes():
+        raise ValueError(f"{path}: cannot write a picture as '.{fmt}' (use .png, .pdf or .svg)")
+    remove_stale_temporaries(path)
+    tmp = temporary_beside(path)
+    try:
+        fig.savefig(tmp, dpi=dpi, format=fmt)
+        put_in_place(tmp, path)
+    except OSError as e:  # the temporary's name means nothing to the user: theirs, and why
+        raise OSError(e.errno, e.strerror, str(path)) from None
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+
+
+def save_figures(figures, out):
+    """Writes [(name, figure)] as out/NAME.png into the folder out (made here) and closes them: the paths."""
+    out = Path(out)
+    written = []
+    try:
+        try:
+            out.mkdir(parents=True, exist_ok=True)
+        except OSError as e:
+            raise OutputFolderError(f"-o {out}: cannot create the output folder ({e.strerror or e})") from None
+        for name, fig in figures:
+            written.append(out / f"{name}.png")
+            save_figure(fig, written[-1])
+    finally:
+        for _, fig in figures:
+            plt.close(fig)
+    return written
+
+
+def draw_all(drawings):
+    """[(name, figure)] of [(name, function drawing it)], every one drawn before any is written;
+    the ones drawn are closed when one fails."""
+    figures = []
+    try:
+        for name, draw in drawings:
+            figures.append((name, draw()))
+    except BaseException:
+        for _, fig in figures:
+            plt.close(fig)
+        raise
+    return figures
+
+
+def modes_words(c):
+    """'5 modes', with the beam theory and the rotation terms where they are not the thesis's."""
+    words = f"{c['beam']['modes']} mode{'' if c['beam']['modes'] == 1 else 's'}"
+    if c["beam"].get("theory", "foreshortening") != "foreshortening":
+        words += f", {c['beam']['theory']}"
+    model = c.get("model", {})
+    off = [name for name in ("centrifugal", "Coriolis") if model.get(name.lower(), True) is False]
+    if off:
+        words += ", without the " + (" and ".join(off) if len(off) < 2 else "rotation") + " terms"
+    return words
+
+
+def case_title(summary):
+    c = summary["config"]
+    return (f"{c['hub']['speed_rpm']:g} rpm, {surface_words(c)}, "
+            f"μ = {c['surface']['friction']:g}, {modes_words(c)}, {summary['scheme']} scheme")
+
+
+def warning_line(summary):
+    """The run's warnings as a line for a title (empty without warnings)."""
+    warnings = summary.get("warnings", [])
+    if not warnings:
+        return ""
+    return "\nwarning: " + "; ".join(warnings) if len(warnings) == 1 else \
+        f"\n{len(warnings)} warnings: " + "; ".join(w.split(":")[0] for w in warnings)
+
+
+def value_text(v):
+    """A sweep value as it was meant: 550 and 0.1, not 550.0 (numbers with %g; others as written)."""
+    if isinstance(v, (float, np.floating)):
+        return f"{v:g}"
+    return str(v)
+
+
+LINESTYLES = ["-", "--", ":", "-."]
+MARKERS = ["o", "s", "^", "D", "v", "P", "X", "*"]
+
+
+def series_styles(series):
+    """A distinct (colour, linestyle, marker) for every series, each a tuple of values: with two or more
+    values per series and at most 10 × 4 combinations, the colour follows the first value and the
+    line style and marker the rest; otherwise series i gets colour i mod 10 and line style and marker
+    from i // 10 (distinct for any number of series)."""
+    firsts = list(dict.fromkeys(t[0] for t in series))
+    rests = list(dict.fromkeys(t[1:] for t in series))
+    styles = []
+    for i, t in enumerate(series):
+        if len(t) > 1 and len(firsts) <= 10 and len(rests) <= len(LINESTYLES):
+            c, k = firsts.index(t[0]), rests.index(t[1:])
+        else:
+            c, k = i % 10, i // 10
+        styles.append({"color": f"C{c}", "linestyle": LINESTYLES[k % len(LINESTYLES)],
+                       "marker": MARKERS[k % len(MARKERS)]})
+    return styles
+
+
+def legend_beside(fig, handles, labels, **options):
+    """A legend right of the panels, never over the data; returns the share of the width left to them."""
+    legend = fig.legend(handles, labels, loc="center right", **options)
+    fig.canvas.draw()
+    return 1.0 - legend.get_window_extent().width / fig.bbox.width - 0.01
