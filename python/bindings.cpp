@@ -8,6 +8,7 @@
 #include "rotbeam/impact_output.hpp"
 #include "rotbeam/beam_factory.hpp"
 #include "rotbeam/modal_analysis.hpp"
+#include "rotbeam/output_columns.hpp"
 #include "rotbeam/static_equilibrium.hpp"
 #include "rotbeam/pass_output.hpp"
 #include "rotbeam/sweep.hpp"
@@ -275,6 +276,30 @@ CaseLoader python_loader(const std::optional<std::string>& path, const std::opti
   };
 }
 
+// The columns of every CSV file of a run or a brush (output_columns.hpp): [{name, columns: [{name,
+// unit, kind, description, words}]}], for the Python module's reader.
+py::list output_column_table() {
+  static const char* const kKinds[] = {"number", "optional_number", "integer", "boolean", "word", "text"};
+  py::list files;
+  for (const OutputFile& f : output_files()) {
+    py::list columns;
+    for (const OutputColumn& c : f.columns) {
+      py::dict d;
+      d["name"] = c.name;
+      d["unit"] = c.unit;
+      d["kind"] = kKinds[static_cast<int>(c.kind)];
+      d["description"] = c.description;
+      d["words"] = py::cast(c.words);
+      columns.append(d);
+    }
+    py::dict file;
+    file["name"] = f.name;
+    file["columns"] = columns;
+    files.append(file);
+  }
+  return files;
+}
+
 py::list metric_table(bool brush) {
   py::list out;
   for (const SweepMetric& m : sweep_metrics(brush)) out.append(py::make_tuple(m.column, m.units, m.description));
@@ -417,6 +442,9 @@ PYBIND11_MODULE(_core, m) {
   m.def("sweep_run", &sweep_run, py::arg("path"), py::arg("text"), py::arg("name"), py::arg("overrides"), py::arg("axes"),
         py::arg("indices"), py::arg("threads"), py::arg("progress") = py::none(),
         "Runs the cases `indices` of a sweep's grid in memory: [(status, [metric values], message, seconds)].");
+  m.def("output_columns", &output_column_table,
+        "The columns of every CSV file of a run or a brush: [{name, columns: [{name, unit, kind, description, "
+        "words}]}] ('q{i}_m': one column per mode).");
   m.def("sweep_metrics", &metric_table, py::arg("brush"),
         "The metric columns of sweep.csv: [(column, units, description)], a filament's or a brush's.");
   m.def("parse_sweep_axis", &parse_axis, py::arg("spec"),

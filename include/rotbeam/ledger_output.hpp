@@ -15,7 +15,4 @@ void put_ledger_terms(nlohmann::json& j, const LedgerValues& values);
 /// each, in the table's order (what the pictures of the ledger iterate).
 nlohmann::json ledger_terms_json();
 
-/// The keys of the reported terms, comma-separated, for a CSV header ("hub_work_j,friction_work_j,…").
-std::string ledger_csv_header();
-
 }  // namespace rotbeam

@@ -8,22 +8,25 @@ A file is read whole and checked before any value is used: a NUL byte, text that
 not CSV, a missing or doubled column, a row whose length is not the header's, a word that is not
 one of its column's words and a number that is not one raise DamagedFolder (or the `error` the
 caller names) with the file's path, the line, the column and the value. What each file holds is
-the table FILES below (by file name): the columns it must have, the columns of words, of free text,
-of whole numbers and of true/false, and the numbers that may be missing; every other column holds a
-number on every row. columns_of(name) says which columns a file must have and set_columns(name,
-columns) replaces them (say, by the columns the library's writers export).
+the table FILES below (by file name), made from the library's table of the columns its writers
+write: the columns each file must have, the columns of words, of free text, of whole numbers and
+of true/false, and the numbers that may be missing; every other column holds a number on every row.
+columns_of(name) says which columns a file must have.
 
-numpy only: `import rotbeam` reads the library's tables through this module without matplotlib.
+numpy and the library only: `import rotbeam` reads the library's tables through this module
+without matplotlib.
 """
 
 import csv
 import io
 import math
 import re
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+
+from . import _core
 
 
 class DamagedFolder(Exception):
@@ -49,45 +52,24 @@ class Columns:
     infer: bool = False
 
 
-# What a run writes (src/io/pass_output.cpp): numbers in their shortest round-trip form
-# (std::to_chars: 0.1, -3.2e-05, 1e+20, inf, nan), the phase and the event kind as words.
-PHASES = ("free", "contact", "stick")
-EVENT_KINDS = ("impact", "lift_off", "contact_start", "contact_end", "slip_reversal", "tip_distance_rule", "warning",
-               "failure", "end", "clear")
-EVENT_COLUMNS = ("t_s", "theta_deg", "kind", "y_tip_m", "vx_before_m_s", "vx_after_m_s", "restitution", "impulse_n_s",
-                 "hub_work_j", "detail")
-EVENT_OPTIONAL = ("y_tip_m", "vx_before_m_s", "vx_after_m_s", "restitution", "impulse_n_s", "hub_work_j")
-FORCE_BIN_COLUMNS = ("theta_from_deg", "theta_to_deg", "normal_impulse_n_s", "tangential_impulse_n_s",
-                     "mean_normal_force_n", "mean_tangential_force_n", "impacts")
-# A brush's workpiece.csv and profile.csv (src/io/brush_output.cpp).
-BRUSH_BIN_COLUMNS = ("theta_from_deg", "theta_to_deg", "normal_impulse_n_s", "tangential_impulse_n_s", "normal_force_n",
-                     "tangential_force_n", "hub_angular_impulse_n_m_s", "hub_torque_n_m", "hub_power_w", "impacts")
-FILAMENT_STATUS = ("steady", "not_steady", "clear", "failed", "error", "interrupted")
+# What a run and a brush write, from the library's one table of their columns
+# (include/rotbeam/output_columns.hpp, rotbeam._core.output_columns): numbers in their shortest
+# round-trip form (std::to_chars: 0.1, -3.2e-05, 1e+20, inf, nan), words, text, whole numbers and
+# true/false as each column says.
+def _library_files():
+    files = {}
+    for f in _core.output_columns():
+        cols = f["columns"]
+        named = lambda kind: tuple(c["name"] for c in cols if c["kind"] == kind)  # noqa: E731
+        files[f["name"]] = Columns(tuple(c["name"] for c in cols),
+                                   words={c["name"]: tuple(c["words"]) for c in cols if c["kind"] == "word"},
+                                   text=named("text"), ints=named("integer"), bools=named("boolean"),
+                                   optional=named("optional_number"))
+    return files
+
 
 FILES = {
-    "history.csv": Columns(("t_s", "theta_deg", "phase", "x_tip_m", "y_tip_m", "gap_m", "vx_m_s", "vy_m_s",
-                            "normal_force_n", "friction_force_n", "lambda_n", "q{i}_m", "qd{i}_m_s", "jacobi_j",
-                            "hub_torque_n_m"), words={"phase": PHASES}),
-    "events.csv": Columns(EVENT_COLUMNS, words={"kind": EVENT_KINDS}, text=("detail",), optional=EVENT_OPTIONAL),
-    "force_bins.csv": Columns(FORCE_BIN_COLUMNS, ints=("impacts",)),
-    "revolutions.csv": Columns(("revolution", "complete", "t_start_s", "t_end_s", "impacts", "contact_episodes",
-                                "first_impact_deg", "last_separation_deg", "normal_impulse_n_s", "friction_work_j",
-                                "surface_work_j", "damping_work_j", "impact_loss_j", "hub_work_j", "energy_change_j",
-                                "mean_hub_torque_n_m", "mean_hub_power_w", "max_tip_deflection_ratio",
-                                "section_distance", "contact_time_s", "peak_normal_force_n", "ledger_residual_j",
-                                "contact_dissipation_j", "q{i}_m", "qd{i}_m_s"),
-                               ints=("revolution", "impacts", "contact_episodes"), bools=("complete",)),
-    "workpiece.csv": Columns(BRUSH_BIN_COLUMNS, ints=("impacts",)),
-    "profile.csv": Columns(BRUSH_BIN_COLUMNS, ints=("impacts",)),
-    "filaments.csv": Columns(("filament", "row", "position", "phase_deg", "length_m", "diameter_m", "depth_fraction",
-                              "distinct", "reaches", "status", "period_revolutions", "revolutions_run",
-                              "mean_normal_force_n", "mean_tangential_force_n", "mean_hub_torque_n_m",
-                              "mean_hub_power_w", "impacts_per_revolution", "contact_time_s", "peak_normal_force_n",
-                              "max_tip_deflection_ratio", "first_contact_deg", "last_contact_deg",
-                              "ledger_residual_j"),
-                             words={"status": FILAMENT_STATUS}, bools=("reaches",),
-                             ints=("filament", "row", "position", "distinct", "period_revolutions",
-                                   "revolutions_run")),
+    **_library_files(),
     # case, folder, the varied keys (any values: inferred), status, the metrics (empty for a case
     # without results), message (docs/cli.md).
     "sweep.csv": Columns(("case", "folder", "status", "message"), text=("folder", "status", "message"), ints=("case",),
@@ -95,16 +77,20 @@ FILES = {
 }
 
 
+# The names the pictures use, from the same table.
+PHASES = FILES["history.csv"].words["phase"]
+EVENT_KINDS = FILES["events.csv"].words["kind"]
+EVENT_COLUMNS = FILES["events.csv"].required
+EVENT_OPTIONAL = FILES["events.csv"].optional
+FORCE_BIN_COLUMNS = FILES["force_bins.csv"].required
+BRUSH_BIN_COLUMNS = FILES["workpiece.csv"].required
+FILAMENT_STATUS = FILES["filaments.csv"].words["status"]
+
+
 def columns_of(name, modes=None):
     """The columns the file `name` must have (FILES), a per-mode name once for each mode 1 … modes
     (none without `modes`); () for a file FILES does not name."""
     return _expand(FILES[name].required, modes) if name in FILES else ()
-
-
-def set_columns(name, columns):
-    """Makes `columns` the columns the file `name` must have (a name holding `{i}`: one per mode),
-    the kinds of its columns kept: the place for the table of columns the library's writers export."""
-    FILES[name] = replace(FILES.get(name, Columns()), required=tuple(columns))
 
 
 def _expand(names, modes):

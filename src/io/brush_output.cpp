@@ -3,6 +3,7 @@
 #include "rotbeam/atomic_file.hpp"
 #include "rotbeam/folder_lock.hpp"
 #include "rotbeam/ledger_output.hpp"
+#include "rotbeam/output_columns.hpp"
 #include "rotbeam/pass_output.hpp"
 #include "rotbeam/units.hpp"
 
@@ -32,9 +33,7 @@ constexpr const char* kPictures[] = {"brush_force.png", "brush_profile.png", "br
 
 namespace {
 std::string bins_csv(const std::vector<ForceBin>& bins, double omega) {
-  std::string out =
-      "theta_from_deg,theta_to_deg,normal_impulse_n_s,tangential_impulse_n_s,normal_force_n,tangential_force_n,"
-      "hub_angular_impulse_n_m_s,hub_torque_n_m,hub_power_w,impacts\n";
+  std::string out = csv_header(output_file("workpiece.csv"), 0) + "\n";
   for (const ForceBin& b : bins) {
     for (double v : {b.from_deg, b.to_deg, b.normal_impulse_n_s, b.tangential_impulse_n_s, b.mean_normal_force_n,
                      b.mean_tangential_force_n, b.hub_angular_impulse_n_m_s, b.mean_hub_torque_n_m,
@@ -54,11 +53,7 @@ std::string workpiece_csv(const BrushResult& result, double omega) { return bins
 std::string profile_csv(const BrushResult& result, double omega) { return bins_csv(result.profile, omega); }
 
 std::string filaments_csv(const BrushResult& result) {
-  std::string out =
-      "filament,row,position,phase_deg,length_m,diameter_m,depth_fraction,distinct,reaches,status,"
-      "period_revolutions,revolutions_run,mean_normal_force_n,mean_tangential_force_n,mean_hub_torque_n_m,"
-      "mean_hub_power_w,impacts_per_revolution,contact_time_s,peak_normal_force_n,max_tip_deflection_ratio,"
-      "first_contact_deg,last_contact_deg,ledger_residual_j\n";
+  std::string out = csv_header(output_file("filaments.csv"), 0) + "\n";
   for (const BrushFilament& f : result.filaments) {
     const FilamentSteadyState& d = result.distinct[f.group];
     out += std::to_string(f.index + 1) + ',' + std::to_string(f.row + 1) + ',' + std::to_string(f.position + 1) + ',';

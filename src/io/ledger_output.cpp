@@ -15,11 +15,4 @@ nlohmann::json ledger_terms_json() {
   return terms;
 }
 
-std::string ledger_csv_header() {
-  std::string h;
-  for (const LedgerTermInfo& info : kLedgerTerms)
-    if (info.report != LedgerReport::internal) h += (h.empty() ? "" : ",") + std::string(info.key);
-  return h;
-}
-
 }  // namespace rotbeam

@@ -4,6 +4,7 @@
 #include "rotbeam/detail/csv.hpp"
 #include "rotbeam/folder_lock.hpp"
 #include "rotbeam/ledger_output.hpp"
+#include "rotbeam/output_columns.hpp"
 
 #include <cerrno>
 #include <charconv>
@@ -41,17 +42,9 @@ std::string io_error(const std::filesystem::path& path, const char* what, int er
 
 }  // namespace
 
-std::string history_header(int n) {
-  std::string h = "t_s,theta_deg,phase,x_tip_m,y_tip_m,gap_m,vx_m_s,vy_m_s,normal_force_n,friction_force_n,lambda_n";
-  for (int i = 1; i <= n; ++i) h += ",q" + std::to_string(i) + "_m";
-  for (int i = 1; i <= n; ++i) h += ",qd" + std::to_string(i) + "_m_s";
-  h += ",jacobi_j,hub_torque_n_m";
-  return h;
-}
+std::string history_header(int n) { return csv_header(output_file("history.csv"), n); }
 
-std::string events_header() {
-  return "t_s,theta_deg,kind,y_tip_m,vx_before_m_s,vx_after_m_s,restitution,impulse_n_s,hub_work_j,detail";
-}
+std::string events_header() { return csv_header(output_file("events.csv"), 0); }
 
 void append_history_line(std::string& out, const HistoryRow& r) {
   put(out, r.t);
@@ -105,9 +98,7 @@ std::string events_csv(const PassResult& result) {
 }
 
 std::string force_bins_csv(const PassResult& result) {
-  std::string out =
-      "theta_from_deg,theta_to_deg,normal_impulse_n_s,tangential_impulse_n_s,mean_normal_force_n,"
-      "mean_tangential_force_n,impacts\n";
+  std::string out = csv_header(output_file("force_bins.csv"), 0) + "\n";
   for (const ForceBin& b : result.force_bins) {
     for (double v : {b.from_deg, b.to_deg, b.normal_impulse_n_s, b.tangential_impulse_n_s, b.mean_normal_force_n,
                      b.mean_tangential_force_n}) {
@@ -120,16 +111,7 @@ std::string force_bins_csv(const PassResult& result) {
   return out;
 }
 
-std::string revolutions_header(int n) {
-  std::string h =
-      "revolution,complete,t_start_s,t_end_s,impacts,contact_episodes,first_impact_deg,last_separation_deg," +
-      ledger_csv_header() +
-      ",energy_change_j,ledger_residual_j,mean_hub_torque_n_m,mean_hub_power_w,max_tip_deflection_ratio,"
-      "section_distance,contact_time_s,peak_normal_force_n";
-  for (int i = 1; i <= n; ++i) h += ",q" + std::to_string(i) + "_m";
-  for (int i = 1; i <= n; ++i) h += ",qd" + std::to_string(i) + "_m_s";
-  return h;
-}
+std::string revolutions_header(int n) { return csv_header(output_file("revolutions.csv"), n); }
 
 void append_revolution_line(std::string& out, const RevolutionRecord& r) {
   out += std::to_string(r.revolution);
