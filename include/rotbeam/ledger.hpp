@@ -28,9 +28,10 @@ enum class LedgerTerm : int {
   tangential_impulse,   // ∫ F_t dt + Σ P_t, friction's momentum on the tip along the tangent [N s]
   contact_moment,       // ∫ (X F_Y − Y F_X) dt + Σ (X P_Y − Y P_X), the contact's angular impulse about the hub [N m s]
   contact_work,         // ∫ q̇ᵀQ dt, the contact force's power in the rotating frame (the Jacobi-integral audit) [J]
+  count                 // (the number of terms)
 };
 
-inline constexpr std::size_t kLedgerTermCount = 10;
+inline constexpr std::size_t kLedgerTermCount = static_cast<std::size_t>(LedgerTerm::count);
 
 /// How a term is reported.
 enum class LedgerReport {
@@ -42,33 +43,42 @@ enum class LedgerReport {
 struct LedgerTermInfo {
   LedgerTerm term;
   const char* key;          // the name in summary.json, revolutions.csv and the Python attributes
+  const char* unit;         // "J", "N s", …
   const char* label;        // a short name for pictures and tables
   LedgerReport report;
   const char* description;  // one line, with the unit
 };
 
 inline constexpr std::array<LedgerTermInfo, kLedgerTermCount> kLedgerTerms = {{
-    {LedgerTerm::hub_work, "hub_work_j", "hub", LedgerReport::energy,
+    {LedgerTerm::hub_work, "hub_work_j", "J", "hub", LedgerReport::energy,
      "the hub's work on the filament, ω∫τ dt with the impulsive part [J]"},
-    {LedgerTerm::friction_work, "friction_work_j", "friction", LedgerReport::energy,
+    {LedgerTerm::friction_work, "friction_work_j", "J", "friction", LedgerReport::energy,
      "friction's work on the tip, ∫F_t V_t dt with V_t the slip relative to the surface (≤ 0) [J]"},
-    {LedgerTerm::surface_work, "surface_work_j", "surface", LedgerReport::energy,
+    {LedgerTerm::surface_work, "surface_work_j", "J", "surface", LedgerReport::energy,
      "a moving surface's work on the tip through friction, in contact and at impacts (0 at rest) [J]"},
-    {LedgerTerm::damping_work, "damping_work_j", "damping", LedgerReport::energy,
+    {LedgerTerm::damping_work, "damping_work_j", "J", "damping", LedgerReport::energy,
      "the beam's own damping, −∫q̇ᵀCq̇ dt (≤ 0) [J]"},
-    {LedgerTerm::impact_loss, "impact_loss_j", "impacts", LedgerReport::energy,
+    {LedgerTerm::impact_loss, "impact_loss_j", "J", "impacts", LedgerReport::energy,
      "the energy the impacts dissipate, their impulses' work less a moving surface's part (≤ 0) [J]"},
-    {LedgerTerm::contact_dissipation, "contact_dissipation_j", "contact damping", LedgerReport::energy,
+    {LedgerTerm::contact_dissipation, "contact_dissipation_j", "J", "contact damping", LedgerReport::energy,
      "a compliant contact's damping, −∫(F_n − kδ^{3/2})δ̇ dt (≤ 0; 0 under the rigid law) [J]"},
-    {LedgerTerm::normal_impulse, "normal_impulse_n_s", "normal impulse", LedgerReport::momentum,
+    {LedgerTerm::normal_impulse, "normal_impulse_n_s", "N s", "normal impulse", LedgerReport::momentum,
      "the momentum into the surface, ∫F_n dt plus the impacts' impulses [N s]"},
-    {LedgerTerm::tangential_impulse, "tangential_impulse_n_s", "tangential impulse", LedgerReport::momentum,
+    {LedgerTerm::tangential_impulse, "tangential_impulse_n_s", "N s", "tangential impulse", LedgerReport::momentum,
      "friction's momentum on the tip along the surface's tangent, ∫F_t dt plus the impacts' [N s]"},
-    {LedgerTerm::contact_moment, "contact_moment_n_m_s", "contact moment", LedgerReport::internal,
+    {LedgerTerm::contact_moment, "contact_moment_n_m_s", "N m s", "contact moment", LedgerReport::internal,
      "the contact's angular impulse about the hub axis [N m s]"},
-    {LedgerTerm::contact_work, "contact_work_j", "contact work", LedgerReport::internal,
+    {LedgerTerm::contact_work, "contact_work_j", "J", "contact work", LedgerReport::internal,
      "the contact force's work in the rotating frame, ∫q̇ᵀQ dt [J]"},
 }};
+
+// Every term has its row, in the enumerators' order.
+constexpr bool ledger_table_in_order() {
+  for (std::size_t k = 0; k < kLedgerTermCount; ++k)
+    if (static_cast<std::size_t>(kLedgerTerms[k].term) != k) return false;
+  return true;
+}
+static_assert(ledger_table_in_order(), "kLedgerTerms: one row per LedgerTerm, in the enumerators' order");
 
 /// The row of `term` in kLedgerTerms.
 inline constexpr const LedgerTermInfo& ledger_term_info(LedgerTerm term) {

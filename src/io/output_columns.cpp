@@ -30,11 +30,6 @@ std::vector<std::string> event_words() {
   return w;
 }
 
-// The unit of a ledger term from its key's suffix.
-const char* ledger_unit(std::string_view key) {
-  return key.ends_with("_n_m_s") ? "N m s" : key.ends_with("_n_s") ? "N s" : "J";
-}
-
 std::vector<OutputFile> make_files() {
   std::vector<OutputFile> files;
   files.push_back(
@@ -86,7 +81,7 @@ std::vector<OutputFile> make_files() {
                    number("first_impact_deg", "degree", "first touch, relative angle (nan: none)"),
                    number("last_separation_deg", "degree", "last separation, relative angle (nan: none)")}};
   for (const LedgerTermInfo& t : kLedgerTerms)
-    if (t.report != LedgerReport::internal) revs.columns.push_back(number(t.key, ledger_unit(t.key), t.description));
+    if (t.report != LedgerReport::internal) revs.columns.push_back(number(t.key, t.unit, t.description));
   for (const OutputColumn& c :
        {number("energy_change_j", "J", "change of E = T + U (+ the contact's stored energy)"),
         number("ledger_residual_j", "J", "the energy terms' sum less the energy change"),
