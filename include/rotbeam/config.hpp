@@ -79,11 +79,11 @@ Config revalidate(const Config& config);
 /// Every accepted key, "section.key", in documentation order.
 const std::vector<std::string>& config_keys();
 
-/// Every key as `rotbeam keys --json` lists it, in documentation order: an array of objects with
-/// "name", "type", "unit" ("" for none), "default" (as to_json writes it, from the structs'
+/// Every key as `rotbeam keys --json` lists it, in documentation order: an array of objects with,
+/// in this order, "name", "type", "unit" ("" for none), "default" (as to_json writes it, from the structs'
 /// defaults), "unset" (what leaving the key out means where that default is a placeholder, else
 /// null), "allowed" (the accepted values in words) and "doc" (one line).
-nlohmann::json describe_config_keys();
+nlohmann::ordered_json describe_config_keys();
 
 /// Throws ConfigError "<flag> KEY: unknown key (did you mean …?)" unless KEY is a configuration key.
 void require_known_key(const std::string& key, const std::string& flag);

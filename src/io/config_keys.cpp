@@ -150,7 +150,7 @@ std::vector<Key> make_table() {
   // the hub's range.
   t.push_back(plain("surface.radius_m", "m", one(above(0, 1e9)), "cylinder: the workpiece's radius R",
                     [](auto& c) -> auto& { return c.surface.radius_m; }, cylinder,
-                    "none (needed with surface.shape = \"cylinder\")"));
+                    "none (a cylinder needs it)"));
   t.push_back(plain("surface.speed_rpm", "rpm", one(closed(-1e6, 1e6)),
                     "cylinder: its spin about its own axis (counter-clockwise > 0, the hub's sense)",
                     [](auto& c) -> auto& { return c.surface.speed_rpm; }, cylinder));
@@ -545,14 +545,14 @@ const std::vector<std::string>& config_keys() {
   return keys;
 }
 
-nlohmann::json describe_config_keys() {
-  nlohmann::json out = nlohmann::json::array();
+nlohmann::ordered_json describe_config_keys() {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
   for (const Key& k : key_table())
     out.push_back({{"name", k.name},
                    {"type", type_text(k)},
                    {"unit", k.unit},
-                   {"default", k.get(defaults())},
-                   {"unset", k.unset.empty() ? nlohmann::json(nullptr) : nlohmann::json(k.unset)},
+                   {"default", nlohmann::ordered_json(k.get(defaults()))},
+                   {"unset", k.unset.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(k.unset)},
                    {"allowed", allowed_text(k)},
                    {"doc", k.doc}});
   return out;
