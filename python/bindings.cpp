@@ -450,4 +450,9 @@ PYBIND11_MODULE(_core, m) {
   m.def("parse_sweep_axis", &parse_axis, py::arg("spec"),
         "`--vary` text (KEY=V1,V2,… or KEY=A:B:N) as (key, [TOML literals]).");
   m.attr("__version__") = kVersion;
+
+  // The key table (rotbeam keys --json): a list of dicts, one per key, in the table's order.
+  m.def(
+      "keys", [] { return py::module_::import("json").attr("loads")(describe_config_keys().dump()); },
+      "Every configuration key as `rotbeam keys --json` lists it: name, type, unit, default, unset, allowed, doc.");
 }

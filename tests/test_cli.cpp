@@ -1,10 +1,13 @@
 // The rotbeam binary as a user runs it: outputs, JSON field names (SPEC §7), exit codes.
+#include "rotbeam/config.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <sys/wait.h>
@@ -529,4 +532,52 @@ TEST(Cli, ARangeWithSpacesAboutItsNumbersIsRead) {
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(fs::exists(dir + "/case-0002/summary.json"));
   fs::remove_all(dir);
+}
+
+TEST(Cli, KeysListsEveryKeyWithTheStructsDefault) {
+  const CliRun json = run("keys --json");
+  ASSERT_EQ(json.status, 0) << json.err;
+  const auto keys = nlohmann::json::parse(json.out);
+  ASSERT_TRUE(keys.is_array());
+  std::map<std::string, nlohmann::json> by_name;
+  for (const auto& k : keys) {
+    for (const char* field : {"name", "type", "unit", "default", "unset", "allowed", "doc"})
+      EXPECT_TRUE(k.contains(field)) << k.dump() << " has no " << field;
+    by_name[k["name"].get<std::string>()] = k;
+  }
+  const std::vector<std::string>& names = rotbeam::config_keys();
+  EXPECT_EQ(by_name.size(), names.size());
+  // The defaults are the structs': every key the default configuration writes, a brush's, and those
+  // of the other shapes and the compliant law from their structs.
+  rotbeam::Config with_brush;
+  with_brush.brush.emplace();
+  nlohmann::json expected = with_brush.to_json();
+  const rotbeam::SurfaceParameters surface;
+  const rotbeam::HertzContact hertz;
+  const rotbeam::BeamParameters beam;
+  expected["beam"]["theory"] = "foreshortening";
+  expected["beam"]["poisson"] = hertz.wire_poisson;
+  expected["model"] = {{"centrifugal", beam.centrifugal}, {"coriolis", beam.coriolis}};
+  expected["surface"].update({{"shape", "plane"}, {"radius_m", surface.radius_m}, {"speed_rpm", surface.speed_rpm},
+                              {"clearance_m", surface.clearance_m}, {"lobes", surface.lobes},
+                              {"lobe_amplitude_m", surface.lobe_amplitude_m}, {"lobe_law", surface.lobe_law},
+                              {"youngs_modulus_pa", hertz.surface_youngs_modulus_pa}, {"poisson", hertz.surface_poisson}});
+  expected["contact"] = {{"model", "rigid"}, {"tip_radius_m", hertz.tip_radius_m},
+                         {"friction_regularization_m_s", hertz.friction_regularization_m_s},
+                         {"stiffness_factor", hertz.stiffness_factor}};
+  expected["simulation"]["revolutions"] = 0;
+  for (const std::string& name : names) {
+    ASSERT_TRUE(by_name.count(name)) << name << " is not listed";
+    const auto dot = name.find('.');
+    const nlohmann::json& want = expected[name.substr(0, dot)][name.substr(dot + 1)];
+    EXPECT_EQ(by_name[name]["default"], want) << name;
+  }
+  EXPECT_EQ(by_name["beam.length_m"]["unit"], "m");
+  EXPECT_EQ(by_name["beam.length_m"]["allowed"], "(0, 100]");
+  EXPECT_EQ(by_name["simulation.revolutions"]["unset"], "none (one pass)");
+  const CliRun table = run("keys");
+  ASSERT_EQ(table.status, 0) << table.err;
+  EXPECT_EQ(table.out.rfind("KEY", 0), 0u) << table.out;
+  for (const std::string& name : names) EXPECT_NE(table.out.find("\n" + name + " "), std::string::npos) << name;
+  EXPECT_NE(table.out.find("    the filament's length L\n"), std::string::npos);
 }

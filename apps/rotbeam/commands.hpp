@@ -20,5 +20,6 @@ Command add_reproduce_command(CLI::App& app);
 Command add_brush_command(CLI::App& app);
 Command add_static_command(CLI::App& app);
 Command add_theories_command(CLI::App& app);
+Command add_keys_command(CLI::App& app);
 
 }  // namespace rotbeam::cli

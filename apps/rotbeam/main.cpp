@@ -49,12 +49,14 @@ int main(int argc, char** argv) {
   Command brush = add_brush_command(app);
   Command statics = add_static_command(app);
   Command theories = add_theories_command(app);
+  Command keys = add_keys_command(app);
   if (argc > 1 && argv[1][0] != '-' && std::string(argv[1]) != "modes" && std::string(argv[1]) != "impact" &&
       std::string(argv[1]) != "run" && std::string(argv[1]) != "converge" &&
       std::string(argv[1]) != "sweep" && std::string(argv[1]) != "merge" && std::string(argv[1]) != "brush" &&
       std::string(argv[1]) != "plot" && std::string(argv[1]) != "animate" &&
-      std::string(argv[1]) != "reproduce" && std::string(argv[1]) != "static" && std::string(argv[1]) != "theories") {
-    print_error("unknown command '" + std::string(argv[1]) + "' (commands: run, sweep, merge, brush, plot, animate, reproduce, converge, theories, impact, modes, static; see rotbeam --help)");
+      std::string(argv[1]) != "reproduce" && std::string(argv[1]) != "static" && std::string(argv[1]) != "theories" &&
+      std::string(argv[1]) != "keys") {
+    print_error("unknown command '" + std::string(argv[1]) + "' (commands: run, sweep, merge, brush, plot, animate, reproduce, converge, theories, impact, modes, static, keys; see rotbeam --help)");
     return kBadInput;
   }
   const int code = [&]() -> int {
@@ -83,6 +85,7 @@ int main(int argc, char** argv) {
       if (app.got_subcommand("brush")) return brush();
       if (app.got_subcommand("static")) return statics();
       if (app.got_subcommand("theories")) return theories();
+      if (app.got_subcommand("keys")) return keys();
     } catch (const rotbeam::ConfigError& e) {
       print_error(e.what());
       return kBadInput;

@@ -70,12 +70,20 @@ Config load_config_text_values(const std::string& toml_text, const std::string& 
 /// Same, from TOML text (for tests and the Python layer).
 Config load_config_string(const std::string& toml_text, const std::vector<std::string>& overrides);
 
-/// `config` (changed in code, as a brush changes its nominal filament for each filament) written
-/// out as its TOML would be and read again: validated as a file is. Throws ConfigError.
+/// `config` (changed in code, as a brush changes its nominal filament for each filament) checked
+/// as a file is: each key that its to_json writes is checked against the key table as if the file
+/// had given that value, then the keys across each other and the start, with the same messages as
+/// load_config. Returns it completed as load_config would (its derived values set). Throws ConfigError.
 Config revalidate(const Config& config);
 
 /// Every accepted key, "section.key", in documentation order.
 const std::vector<std::string>& config_keys();
+
+/// Every key as `rotbeam keys --json` lists it, in documentation order: an array of objects with,
+/// in this order, "name", "type", "unit" ("" for none), "default" (as to_json writes it, from the structs'
+/// defaults), "unset" (what leaving the key out means where that default is a placeholder, else
+/// null), "allowed" (the accepted values in words) and "doc" (one line).
+nlohmann::ordered_json describe_config_keys();
 
 /// Throws ConfigError "<flag> KEY: unknown key (did you mean …?)" unless KEY is a configuration key.
 void require_known_key(const std::string& key, const std::string& flag);

@@ -47,7 +47,7 @@ except ImportError:
 
 from typing import TYPE_CHECKING, Any, Callable, Mapping, Optional, Sequence, Union
 
-from ._core import ConfigError, config_keys
+from ._core import ConfigError, config_keys, keys
 from . import _core
 
 if TYPE_CHECKING:  # only for the annotations: xarray is imported when a Dataset is made
@@ -57,7 +57,7 @@ __version__: str = _core.__version__
 """rotbeam's version (project(VERSION) in CMakeLists.txt, the one place it is set)."""
 
 __all__ = ["run", "impact", "modes", "static", "brush", "sweep", "open_sweep", "Result", "BrushResult", "ConfigError",
-           "ConfigFileNotFoundError", "config_keys", "__version__"]
+           "ConfigFileNotFoundError", "config_keys", "keys", "__version__"]
 
 # What `config` may be: a TOML file's path, a dict shaped like the file, or None for the defaults.
 ConfigLike = Union[str, "os.PathLike[str]", Mapping[str, Mapping[str, Any]], None]
