@@ -46,29 +46,30 @@ struct LedgerTermInfo {
   const char* unit;         // "J", "N s", …
   const char* label;        // a short name for pictures and tables
   LedgerReport report;
+  bool integrated;          // the steps integrate it from a rate (the hub's work and the impacts' loss have none)
   const char* description;  // one line, with the unit
 };
 
 inline constexpr std::array<LedgerTermInfo, kLedgerTermCount> kLedgerTerms = {{
-    {LedgerTerm::hub_work, "hub_work_j", "J", "hub", LedgerReport::energy,
+    {LedgerTerm::hub_work, "hub_work_j", "J", "hub", LedgerReport::energy, false,
      "the hub's work on the filament, ω∫τ dt with the impulsive part [J]"},
-    {LedgerTerm::friction_work, "friction_work_j", "J", "friction", LedgerReport::energy,
+    {LedgerTerm::friction_work, "friction_work_j", "J", "friction", LedgerReport::energy, true,
      "friction's work on the tip, ∫F_t V_t dt with V_t the slip relative to the surface (≤ 0) [J]"},
-    {LedgerTerm::surface_work, "surface_work_j", "J", "surface", LedgerReport::energy,
+    {LedgerTerm::surface_work, "surface_work_j", "J", "surface", LedgerReport::energy, true,
      "a moving surface's work on the tip through friction, in contact and at impacts (0 at rest) [J]"},
-    {LedgerTerm::damping_work, "damping_work_j", "J", "damping", LedgerReport::energy,
+    {LedgerTerm::damping_work, "damping_work_j", "J", "damping", LedgerReport::energy, true,
      "the beam's own damping, −∫q̇ᵀCq̇ dt (≤ 0) [J]"},
-    {LedgerTerm::impact_loss, "impact_loss_j", "J", "impacts", LedgerReport::energy,
+    {LedgerTerm::impact_loss, "impact_loss_j", "J", "impacts", LedgerReport::energy, false,
      "the energy the impacts dissipate, their impulses' work less a moving surface's part (≤ 0) [J]"},
-    {LedgerTerm::contact_dissipation, "contact_dissipation_j", "J", "contact damping", LedgerReport::energy,
+    {LedgerTerm::contact_dissipation, "contact_dissipation_j", "J", "contact damping", LedgerReport::energy, true,
      "a compliant contact's damping, −∫(F_n − kδ^{3/2})δ̇ dt (≤ 0; 0 under the rigid law) [J]"},
-    {LedgerTerm::normal_impulse, "normal_impulse_n_s", "N s", "normal impulse", LedgerReport::momentum,
+    {LedgerTerm::normal_impulse, "normal_impulse_n_s", "N s", "normal impulse", LedgerReport::momentum, true,
      "the momentum into the surface, ∫F_n dt plus the impacts' impulses [N s]"},
-    {LedgerTerm::tangential_impulse, "tangential_impulse_n_s", "N s", "tangential impulse", LedgerReport::momentum,
+    {LedgerTerm::tangential_impulse, "tangential_impulse_n_s", "N s", "tangential impulse", LedgerReport::momentum, true,
      "friction's momentum on the tip along the surface's tangent, ∫F_t dt plus the impacts' [N s]"},
-    {LedgerTerm::contact_moment, "contact_moment_n_m_s", "N m s", "contact moment", LedgerReport::internal,
+    {LedgerTerm::contact_moment, "contact_moment_n_m_s", "N m s", "contact moment", LedgerReport::internal, true,
      "the contact's angular impulse about the hub axis [N m s]"},
-    {LedgerTerm::contact_work, "contact_work_j", "J", "contact work", LedgerReport::internal,
+    {LedgerTerm::contact_work, "contact_work_j", "J", "contact work", LedgerReport::internal, true,
      "the contact force's work in the rotating frame, ∫q̇ᵀQ dt [J]"},
 }};
 
@@ -79,6 +80,20 @@ constexpr bool ledger_table_in_order() {
   return true;
 }
 static_assert(ledger_table_in_order(), "kLedgerTerms: one row per LedgerTerm, in the enumerators' order");
+
+/// The terms the steps integrate, in the table's order, and how many.
+inline constexpr std::size_t kIntegratedTermCount = [] {
+  std::size_t n = 0;
+  for (const LedgerTermInfo& info : kLedgerTerms) n += info.integrated;
+  return n;
+}();
+inline constexpr std::array<LedgerTerm, kIntegratedTermCount> kIntegratedTerms = [] {
+  std::array<LedgerTerm, kIntegratedTermCount> out{};
+  std::size_t n = 0;
+  for (const LedgerTermInfo& info : kLedgerTerms)
+    if (info.integrated) out[n++] = info.term;
+  return out;
+}();
 
 /// The row of `term` in kLedgerTerms.
 inline constexpr const LedgerTermInfo& ledger_term_info(LedgerTerm term) {

@@ -46,8 +46,15 @@ constexpr int kSamplesPerStep = 4;  // interior samples of the dense output per 
 // Free flight samples the gap at least this many times per period of the highest linear mode, so
 // that a step spanning several of its periods (the integrating factor allows it) misses no touch.
 constexpr double kSamplesPerPeriod = 8.0;
-constexpr int kLedger = static_cast<int>(kLedgerTermCount);  // the ledger's terms after q and q̇ in the state
-constexpr int kDampingWork = static_cast<int>(LedgerTerm::damping_work);
+// The ledger's integrated terms after q and q̇ in the state (ledger.hpp: kIntegratedTerms), and the
+// beam's damping work's place among them.
+constexpr int kLedger = static_cast<int>(kIntegratedTermCount);
+constexpr int kDampingWork = [] {
+  for (int k = 0; k < kLedger; ++k)
+    if (kIntegratedTerms[k] == LedgerTerm::damping_work) return k;
+  return -1;
+}();
+static_assert(kDampingWork >= 0, "the beam's damping work is integrated");
 constexpr int kBrentBits = 30;      // a maximum or minimum on the dense output to ~1e-9 of its bracket
 // An accepted step shorter than this fraction of the pass means the tolerance cannot be met in
 // double precision (at rtol ≥ 1e-13 the steps stay above ~1e-9 s for a pass of ~1e-2 s).
@@ -181,7 +188,7 @@ private:
   // The ledger's integrals held in x.
   LedgerValues ledger_of(const State& x) const {
     LedgerValues l;
-    for (int k = 0; k < kLedger; ++k) l.value[k] = x[2 * n_ + k];
+    for (int k = 0; k < kLedger; ++k) l[kIntegratedTerms[k]] = x[2 * n_ + k];
     return l;
   }
   void store(FilamentState& s) const {
@@ -213,7 +220,7 @@ private:
     a = force_ - ws_->psi;
     ws_->mass_llt.solveInPlace(a);
     motion_derivative(dxdt);
-    for (int k = 0; k < kLedger; ++k) dxdt[2 * n_ + k] = e.load.rate.value[k];
+    for (int k = 0; k < kLedger; ++k) dxdt[2 * n_ + k] = e.load.rate[kIntegratedTerms[k]];
     dxdt[2 * n_ + kDampingWork] = damped_ ? -sys_.beam.dissipation(qd) : 0.0;
   }
 
