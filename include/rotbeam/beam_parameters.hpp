@@ -44,4 +44,22 @@ double bending_stiffness(const BeamParameters& p);
 /// and θ0 [rad] finite, and the modes in 1..max_modes (a beam model's own limit).
 void check_beam_parameters(const BeamParameters& p, double theta0_rad, int max_modes);
 
+/// What every beam model keeps of its parameters, in SI units.
+struct BeamConstants {
+  int n = 0;                     // number of assumed modes
+  double length = 0;             // L [m]
+  double hub_radius = 0;         // r_h [m]
+  double omega = 0;              // ω [rad/s]
+  double theta0 = 0;             // beam angle at t = 0 [rad]
+  double mass_per_length = 0;    // ρA [kg/m]
+  double bending_stiffness = 0;  // EI [N m²]
+  double mass = 0;               // m = ρAL [kg]
+  // The rotation terms kept (BeamParameters): without model.centrifugal the ω² terms are dropped,
+  // without model.coriolis the terms linear in ω.
+  bool centrifugal = true, coriolis = true;
+};
+
+/// The constants of `p` at θ0 = theta0_rad, checked (check_beam_parameters with max_modes).
+BeamConstants beam_constants(const BeamParameters& p, double theta0_rad, int max_modes);
+
 }  // namespace rotbeam

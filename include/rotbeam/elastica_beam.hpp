@@ -46,15 +46,11 @@ struct ElasticaWorkspace : BeamWorkspace {
   auto jy() { return integral.middleCols(2 + n, n); }
 };
 
-class ElasticaBeam final : public BeamModel {
+class ElasticaBeam final : public BeamModel, public BeamConstants {
 public:
   /// Gauss–Legendre points per panel.
   static constexpr int kPanelPoints = 16;
 
-  int n = 0;
-  double length = 0, hub_radius = 0, omega = 0, theta0 = 0;  // L, r_h [m], ω [rad/s], θ0 [rad]
-  double mass_per_length = 0, bending_stiffness = 0, mass = 0;  // ρA [kg/m], EI [N m²], m [kg]
-  bool centrifugal = true, coriolis = true;                   // the rotation terms kept
   std::shared_ptr<const ModalBasis> basis;  // S_i and its derivatives (for the centreline at any ξ)
   Eigen::VectorXd r4;           // r_i⁴
   // The quadrature: `panels` equal panels of kPanelPoints Legendre nodes on ξ ∈ [0, 1].

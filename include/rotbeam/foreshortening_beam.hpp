@@ -14,19 +14,10 @@
 
 namespace rotbeam {
 
-class ForeshorteningBeam final : public BeamModel {
+// BeamConstants: without model.centrifugal the ω² terms (K_ω, T0) are dropped, without
+// model.coriolis the terms linear in ω (2ωG q̇, T1).
+class ForeshorteningBeam final : public BeamModel, public BeamConstants {
 public:
-  int n = 0;                     // number of assumed modes
-  double length = 0;             // L [m]
-  double hub_radius = 0;         // r_h [m]
-  double omega = 0;              // ω [rad/s]
-  double theta0 = 0;             // beam angle at t = 0 [rad]
-  double mass_per_length = 0;    // ρA [kg/m]
-  double bending_stiffness = 0;  // EI [N m²]
-  double mass = 0;               // m = ρAL [kg]
-  // The rotation terms kept (BeamParameters): without model.centrifugal the ω² terms (K_ω, T0)
-  // are dropped, without model.coriolis the terms linear in ω (2ωG q̇, T1).
-  bool centrifugal = true, coriolis = true;
   std::shared_ptr<const ModalIntegrals> integrals;
   // Modal damping (SPEC §11): C = M0 Φ diag(2ζ_iΩ_i) Φᵀ M0 with Φ the mass-normalised linear modes
   // at ω (M0 = m·1); the generalised force is −C q̇. Empty (0×0) when undamped.

@@ -1,5 +1,7 @@
 #include "rotbeam/beam_parameters.hpp"
 
+#include "rotbeam/units.hpp"
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -29,6 +31,22 @@ void check_beam_parameters(const BeamParameters& p, double theta0_rad, int max_m
     throw std::invalid_argument("speed and start angle must be finite");
   if (p.modes < 1 || p.modes > max_modes)
     throw std::invalid_argument("modes must be in 1.." + std::to_string(max_modes) + ", got " + std::to_string(p.modes));
+}
+
+BeamConstants beam_constants(const BeamParameters& p, double theta0_rad, int max_modes) {
+  check_beam_parameters(p, theta0_rad, max_modes);
+  BeamConstants c;
+  c.n = p.modes;
+  c.length = p.length_m;
+  c.hub_radius = p.hub_radius_m;
+  c.omega = rad_per_s_from_rpm(p.speed_rpm);
+  c.theta0 = theta0_rad;
+  c.centrifugal = p.centrifugal;
+  c.coriolis = p.coriolis;
+  c.mass_per_length = mass_per_length(p);
+  c.bending_stiffness = bending_stiffness(p);
+  c.mass = c.mass_per_length * p.length_m;
+  return c;
 }
 
 }  // namespace rotbeam

@@ -267,19 +267,10 @@ double ElasticaBeam::tip_excursion_bound(const Eigen::Ref<const Eigen::VectorXd>
 }
 
 ElasticaBeam make_elastica(const BeamParameters& p, double theta0_rad, int panels) {
-  check_beam_parameters(p, theta0_rad, kMaxElasticaModes);
+  const BeamConstants constants = beam_constants(p, theta0_rad, kMaxElasticaModes);
   if (panels < 0) throw std::invalid_argument("panels must be >= 0, got " + std::to_string(panels));
   ElasticaBeam b;
-  b.n = p.modes;
-  b.length = p.length_m;
-  b.hub_radius = p.hub_radius_m;
-  b.omega = rad_per_s_from_rpm(p.speed_rpm);
-  b.theta0 = theta0_rad;
-  b.centrifugal = p.centrifugal;
-  b.coriolis = p.coriolis;
-  b.mass_per_length = mass_per_length(p);
-  b.bending_stiffness = bending_stiffness(p);
-  b.mass = b.mass_per_length * p.length_m;
+  static_cast<BeamConstants&>(b) = constants;
   b.panels = panels > 0 ? panels : b.n + 2;
 
   // Legendre nodes on [−1, 1], ascending, and the running-integral matrix: with the Lagrange basis

@@ -137,18 +137,8 @@ double ForeshorteningBeam::tip_excursion_bound(const Eigen::Ref<const Eigen::Vec
 }
 
 ForeshorteningBeam make_beam(const BeamParameters& p, double theta0_rad) {
-  check_beam_parameters(p, theta0_rad, kMaxModes);
   ForeshorteningBeam m;
-  m.n = p.modes;
-  m.length = p.length_m;
-  m.hub_radius = p.hub_radius_m;
-  m.omega = rad_per_s_from_rpm(p.speed_rpm);
-  m.theta0 = theta0_rad;
-  m.centrifugal = p.centrifugal;
-  m.coriolis = p.coriolis;
-  m.mass_per_length = mass_per_length(p);
-  m.bending_stiffness = bending_stiffness(p);
-  m.mass = m.mass_per_length * p.length_m;
+  static_cast<BeamConstants&>(m) = beam_constants(p, theta0_rad, kMaxModes);
   m.integrals = modal_integrals(p.modes);
   m.linear_stiffness_ = linear_stiffness(m);
   m.damping = modal_damping_matrix(m.mass * Eigen::MatrixXd::Identity(m.n, m.n), m.linear_stiffness_, p.damping_ratio);
