@@ -1,7 +1,8 @@
 """The pictures of a run folder (history.csv, events.csv, summary.json; force_bins.csv where the run
 wrote one): normal_force_vs_y.png (sustained contact's F_n, the impacts' impulses, and the mean
 force over bins of hub angle), tip_path.png (the path with close-ups, thesis Figure 13),
-modal_coordinates.png, energy.png (the Jacobi integral, why impacts move it, and the hub torque)
+modal_coordinates.png, energy.png (the Jacobi integral, why impacts move it, the hub torque, and
+the energy ledger)
 and impacts.png. Each picture is a function returning its matplotlib figure.
 """
 
@@ -249,10 +250,45 @@ def energy_note(ledger):
     return why
 
 
+def ledger_panel(ax, summary):
+    """The energy ledger in the inertial frame: each energy term of summary.json's ledger_terms (the
+    library's one table of them) and the energy change, over the run and over its last complete
+    revolution where it has one, with the residual of each balance."""
+    terms = summary.get("ledger_terms") or []
+    groups = [("whole run", summary)]
+    if isinstance(summary.get("last_revolution"), dict):
+        groups.append((f"revolution {summary['last_revolution'].get('revolution', '')}", summary["last_revolution"]))
+    if not terms:
+        ax.text(0.5, 0.5, "summary.json lists no ledger terms (a run of an older rotbeam)", transform=ax.transAxes,
+                ha="center", va="center", fontsize=8)
+        ax.set_axis_off()
+        return
+    names = [t["label"] for t in terms] + ["energy change"]
+    width = 0.8 / len(groups)
+    x = np.arange(len(names))
+    for g, (label, entry) in enumerate(groups):
+        values = [float(entry.get(t["key"], float("nan"))) for t in terms] + [float(entry.get("energy_change_j", float("nan")))]
+        residual = entry.get("ledger_residual_j")
+        words = f"{label} (residual {float(residual) * 1e6:.2g} µJ)" if isinstance(residual, (int, float)) else label
+        ax.bar(x + (g - (len(groups) - 1) / 2) * width, np.array(values) * 1e6, width, label=words,
+               color=f"C{g}", hatch=None)
+    ax.axhline(0, color="k", lw=0.6)
+    ax.set_xticks(x)
+    ax.set_xticklabels(names, fontsize=8)
+    ax.set_ylabel("energy given to the filament (µJ)")
+    ax.set_title("energy ledger in the inertial frame: the terms sum to the energy change", fontsize=9)
+    ax.legend(fontsize=7, loc="best")
+
+
 def energy_figure(h, events, summary, title):
-    """energy.png: the Jacobi integral (with why impacts raise it) and the hub torque against θ."""
+    """energy.png: the Jacobi integral (with why impacts raise it), the hub torque against θ, and the
+    energy ledger of the run (and of its last complete revolution)."""
     imp = impact_rows(events)
-    fig, (a1, a2) = plt.subplots(2, 1, figsize=(9, 6.5), sharex=True)
+    fig = plt.figure(figsize=(9, 9))
+    grid = fig.add_gridspec(3, 1, height_ratios=[1.1, 0.8, 0.9])
+    a1 = fig.add_subplot(grid[0])
+    a2 = fig.add_subplot(grid[1], sharex=a1)
+    a3 = fig.add_subplot(grid[2])
     a1.plot(h["theta_deg"], (h["jacobi_j"] - h["jacobi_j"][0]) * 1e6, lw=1)
     for i in imp:
         a1.axvline(events["theta_deg"][i], color="C3", lw=0.4, alpha=0.5)
@@ -272,6 +308,9 @@ def energy_figure(h, events, summary, title):
     a2.set_xlabel(f"hub angle θ ({DEG})")
     for a in (a1, a2):
         a.grid(alpha=0.3)
+    plt.setp(a1.get_xticklabels(), visible=False)
+    ledger_panel(a3, summary)
+    a3.grid(alpha=0.3, axis="y")
     fig.tight_layout()
     return fig
 
