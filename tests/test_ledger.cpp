@@ -33,9 +33,9 @@ double trapezoid_friction(const PassResult& r) {
 
 }  // namespace
 
-// Tolerances: the trapezoid over steps of ≤ 2e-5 s (and much shorter in contact) is accurate to
-// ~1e-4 of the impulse on these passes; a sign error, a missing factor μ, or friction at the step's
-// end slip instead of the integral, are off by 100 %, a factor or (compliant) ~1e-3.
+// Tolerance 3e-4: the trapezoid over the accepted steps is within 1.1e-4 of the integrated impulse on
+// these passes (measured: 1.1e-4, 2.2e-5, 2.1e-6, 1.9e-5); friction 0.1 % off fails, and so do a sign
+// error, a missing μ, or (compliant law) the step's end slip applied to ∫F_n dt (up to 7e-3 in a bin).
 TEST(Ledger, TheTangentialImpulseIsTheIntegralOfTheFrictionForce) {
   for (const std::vector<std::string>& sets :
        {std::vector<std::string>{}, {"hub.speed_rpm=1200", "surface.friction=0.2"},
@@ -44,14 +44,15 @@ TEST(Ledger, TheTangentialImpulseIsTheIntegralOfTheFrictionForce) {
     ASSERT_FALSE(r.failure) << r.failure->message;
     const double integrated = r.summary.ledger[LedgerTerm::tangential_impulse];
     ASSERT_GT(std::abs(integrated), 0.0);
-    EXPECT_NEAR(integrated, trapezoid_friction(r), 2e-3 * std::abs(integrated)) << ::testing::PrintToString(sets);
+    EXPECT_NEAR(integrated, trapezoid_friction(r), 3e-4 * std::abs(integrated)) << ::testing::PrintToString(sets);
     double bins = 0;
     for (const ForceBin& b : r.force_bins) bins += b.tangential_impulse_n_s;
     EXPECT_NEAR(bins, -integrated, 1e-12 * std::abs(integrated)) << "the surface gets the opposite";
   }
 }
 
-// The normal impulse: impacts' |P| plus ∫F_n dt, against the events and the trapezoid.
+// The normal impulse: impacts' |P| plus ∫F_n dt, against the events and the trapezoid (within 7e-7
+// measured; tolerance 1e-5).
 TEST(Ledger, TheNormalImpulseIsTheImpactsPlusTheIntegralOfTheNormalForce) {
   const PassResult r = run({"hub.speed_rpm=1000"});
   ASSERT_FALSE(r.failure);
@@ -62,5 +63,5 @@ TEST(Ledger, TheNormalImpulseIsTheImpactsPlusTheIntegralOfTheNormalForce) {
   for (std::size_t k = 1; k < r.history.size(); ++k)
     contact += 0.5 * (r.history[k - 1].normal_force + r.history[k].normal_force) * (r.history[k].t - r.history[k - 1].t);
   const double total = r.summary.ledger[LedgerTerm::normal_impulse];
-  EXPECT_NEAR(total, impacts + contact, 2e-3 * total);
+  EXPECT_NEAR(total, impacts + contact, 1e-5 * total);
 }
