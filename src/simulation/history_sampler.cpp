@@ -1,5 +1,6 @@
 #include "history_sampler.hpp"
 
+#include "rotbeam/sample_grid.hpp"
 #include "rotbeam/surface.hpp"
 
 #include <algorithm>
@@ -9,9 +10,8 @@
 namespace rotbeam {
 
 namespace {
-// The first time of the grid k·h after t [s]. A row written at k·h gives t/h a hair below k at
-// times: the guard keeps it from naming t again.
-double next_grid_time(double t, double h) { return h * (std::floor(t / h + 1e-9) + 1.0); }
+// Rows written between two looks at the stop request in the loops that write many rows per step.
+constexpr long kRowsPerStopCheck = 1024;
 }  // namespace
 
 HistorySampler::HistorySampler(PassContext& context)
@@ -44,13 +44,16 @@ double HistorySampler::hub_torque(const Eigen::VectorXd& q, const Eigen::VectorX
 
 void HistorySampler::sample(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Phase phase,
                             const ContactLoad& load) {
+  const System& sys = ctx_.system;
+  const PassOptions& o = ctx_.options;
+  // The grids move past t whether or not a row is written here.
+  next_near_t_ = o.near_surface_interval_s > 0.0 ? next_grid_time(t, o.near_surface_interval_s) : t;
+  if (o.output_interval_s > 0.0) next_sample_t_ = next_grid_time(t, o.output_interval_s);
   // One row per state: an event that forces a row where one was just written (the pre-impact state,
   // the pass's last state) gives no second, identical row.
   if (t == row_.t && phase == row_.phase && q == row_.q && qd == row_.qd && load.normal_force == row_.normal_force &&
       load.friction_force == row_.friction_force && load.lambda == row_.lambda)
     return;
-  const System& sys = ctx_.system;
-  const PassOptions& o = ctx_.options;
   tip_kinematics(sys.beam, sys.surface, t, q, qd, tip_);
   row_.t = t;
   row_.theta = tip_.theta;
@@ -70,9 +73,6 @@ void HistorySampler::sample(double t, const Eigen::VectorXd& q, const Eigen::Vec
   note_energy(e.jacobi, e.t2);
   row_.hub_torque = hub_torque(q, qd, load);
   ctx_.sink.row(row_);
-  next_near_t_ = o.near_surface_interval_s > 0.0 ? next_grid_time(t, o.near_surface_interval_s) : t;
-  if (o.output_interval_s <= 0.0) return;  // every accepted point is sampled
-  next_sample_t_ = next_grid_time(t, o.output_interval_s);
 }
 
 bool HistorySampler::near_surface(double t, const Eigen::VectorXd& q) {
@@ -116,7 +116,7 @@ void HistorySampler::rigid_turn(double t_from, double t_to) {
   bool stopping = false;
   double tk = t_from;
   for (long rows = 1;; ++rows) {
-    if ((rows & 1023) == 0 && !stopping) {
+    if (rows % kRowsPerStopCheck == 0 && !stopping) {
       stopping = ctx_.control.stop && ctx_.control.stop->stop_requested();
       const auto now = std::chrono::steady_clock::now();
       if (ctx_.control.on_progress && now >= next_report) {
@@ -148,7 +148,10 @@ void HistorySampler::free_rows_within(double t_last, double t, const Eigen::Vect
   const double gap_before = last_gap_;  // at the step's start (near_surface below moves it to t)
   const bool near_rows = h > 0.0 && o.near_surface_gap_m > 0.0 && (near_surface(t, q) || gap_before > -o.near_surface_gap_m);
   const bool grid_rows = interval > 0.0;
-  for (;;) {
+  for (long rows = 1;; ++rows) {
+    // Millions of rows can fall inside one step (a fine near-surface grid): a stop request ends them
+    // here, and the pass at its next step.
+    if (rows % kRowsPerStopCheck == 0 && ctx_.control.stop && ctx_.control.stop->stop_requested()) return;
     const double t_grid =
         grid_rows ? (next_sample_t_ > t_last ? next_sample_t_ : next_grid_time(t_last, interval)) : INFINITY;
     const double t_near = near_rows ? std::max(next_near_t_, next_grid_time(t_last, h)) : INFINITY;

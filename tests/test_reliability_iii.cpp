@@ -1,0 +1,102 @@
+// Reliability III (docs/reliability.md): passes that advance at every time and honour every stop.
+#include "rotbeam/case.hpp"
+#include "rotbeam/sample_grid.hpp"
+#include "rotbeam/stop_token.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+using namespace rotbeam;
+
+TEST(ReliabilityIII, TheNextGridTimeAlwaysAdvances) {
+  // h·(floor(t/h + 1e-9) + 1) gave t itself for t = 0.03125 s, h = 1 ns and for t = 256 s with the
+  // default 10 µs: the history stalled there. The next grid time is after t and at most one step
+  // (plus t's own rounding) beyond it, at every time and grid.
+  EXPECT_GT(next_grid_time(0.03125, 1e-9), 0.03125);
+  EXPECT_GT(next_grid_time(256.0, 1e-5), 256.0);
+  EXPECT_GT(next_grid_time(1e9, 1e-12), 1e9);  // h below t's resolution: the next double
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> exponent(-12.0, 3.0), mantissa(1.0, 10.0);
+  for (int i = 0; i < 200000; ++i) {
+    const double h = mantissa(rng) * std::pow(10.0, std::round(exponent(rng)) - 3.0);
+    // t on the grid itself (the case that stalled) and off it.
+    const double k = std::floor(std::uniform_real_distribution<double>(0.0, 1e7)(rng));
+    for (const double t : {k * h, (k + 0.5) * h}) {
+      const double next = next_grid_time(t, h);
+      ASSERT_GT(next, t) << "t = " << t << ", h = " << h;
+      ASSERT_LE(next, t + h * (1.0 + 1e-9) + 4.0 * std::nextafter(t, INFINITY) - 4.0 * t) << "t = " << t << ", h = " << h;
+    }
+  }
+}
+
+TEST(ReliabilityIII, SuccessiveGridTimesAreTheGrid) {
+  // Walking the grid from 0 gives k·h at the k-th call (no skipped and no repeated point) far past
+  // where the old guard failed.
+  const double h = 1e-5;
+  double t = 255.99;
+  for (long k = std::lround(t / h); t < 256.01; ++k) {
+    const double next = next_grid_time(t, h);
+    ASSERT_EQ(next, (k + 1) * h) << "t = " << t;
+    t = next;
+  }
+}
+
+namespace {
+// Counts rows and asks the pass to stop once a row is written past `stop_after_s`.
+struct StoppingSink : PassSink {
+  StopToken* stop = nullptr;
+  double stop_after_s = 0.0;
+  long rows = 0, rows_after_stop = 0;
+  double last_t = 0.0;
+  void row(const HistoryRow& r) override {
+    ++rows;
+    last_t = r.t;
+    if (stop->stop_requested()) ++rows_after_stop;
+    else if (r.t > stop_after_s) stop->request_stop();
+  }
+  void event(const PassEvent&) override {}
+};
+}  // namespace
+
+TEST(ReliabilityIII, AFineNearSurfaceGridPassesTheTimeThatStalledAndHonoursAStop) {
+  // 400 rpm, a near-surface grid of 1 ns within 0.2 mm of the surface: the history stopped growing
+  // at t = 0.03124789 s and the pass ignored SIGINT. The rows now pass that time, and a stop
+  // requested inside the fine grid (millions of rows per step) ends the pass within a few thousand
+  // rows (the loop looks at the token every 1024 rows).
+  const Case c = build_case(load_config_string("", {"hub.speed_rpm=400", "initial.modal_velocity=[0.01,0,0,0,0]",
+                                                    "output.near_surface_interval_s=1e-9",
+                                                    "output.near_surface_gap_m=3.2e-3"}));
+  StopToken stop;
+  StoppingSink sink;
+  sink.stop = &stop;
+  sink.stop_after_s = 0.0312479;
+  PassControl control;
+  control.stop = &stop;
+  control.sink = &sink;
+  const PassResult r = run_case(c, control);
+  ASSERT_TRUE(r.failure);
+  EXPECT_EQ(r.failure->kind, FailureKind::interrupted);
+  EXPECT_GT(sink.last_t, 0.0312479);
+  EXPECT_LT(sink.rows_after_stop, 4096);
+}
+
+TEST(ReliabilityIII, AStopEndsTheRowsOfALongStepOnAFineGrid) {
+  // The base case with every row a near-surface row (a gap of 1 m) on a 1 ns grid: one free-flight
+  // step holds millions of rows, and SIGTERM waited 13 minutes (6.95 GB). A stop requested at the
+  // first row past 1 µs ends the pass within the next 1024 rows, not at the step's end.
+  const Case c = build_case(load_config_string(
+      "", {"output.near_surface_interval_s=1e-9", "output.near_surface_gap_m=1", "output.interval_s=1e-9"}));
+  StopToken stop;
+  StoppingSink sink;
+  sink.stop = &stop;
+  sink.stop_after_s = 1e-6;
+  PassControl control;
+  control.stop = &stop;
+  control.sink = &sink;
+  const PassResult r = run_case(c, control);
+  ASSERT_TRUE(r.failure);
+  EXPECT_EQ(r.failure->kind, FailureKind::interrupted);
+  EXPECT_LE(sink.rows_after_stop, 1100);
+}
