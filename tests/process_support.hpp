@@ -40,6 +40,12 @@ inline int exit_code(pid_t pid) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : WIFSIGNALED(status) ? 128 + WTERMSIG(status) : -1;
 }
 
+/// True once the child process `pid` has ended (it is left to exit_code to collect).
+inline bool ended(pid_t pid) {
+  siginfo_t info{};
+  return ::waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid == pid;
+}
+
 /// Polls `ready` every 5 ms until it holds or `deadline` has passed: whether it held.
 inline bool wait_until(const std::function<bool()>& ready, std::chrono::seconds deadline = std::chrono::seconds(300)) {
   const auto end = std::chrono::steady_clock::now() + deadline;

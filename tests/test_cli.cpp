@@ -406,7 +406,9 @@ TEST(Cli, ModesSpeedsAreShownWithTheDigitsThatTellThemApart) {
 CliRun run_interrupted(const std::string& args) {
   const std::string err_file = ::testing::TempDir() + "rotbeam_cli_interrupted_" + std::to_string(getpid()) + ".txt";
   const pid_t pid = rotbeam::test::start_in_background(std::string(ROTBEAM_CLI) + " " + args + " >/dev/null 2>" + err_file);
-  const bool under_way = rotbeam::test::wait_until([&] { return rotbeam::test::runs_and_catches(pid, ROTBEAM_CLI, SIGINT); });
+  const bool under_way = rotbeam::test::wait_until([&] {
+    return rotbeam::test::ended(pid) || rotbeam::test::runs_and_catches(pid, ROTBEAM_CLI, SIGINT);
+  }) && !rotbeam::test::ended(pid);
   ::kill(pid, under_way ? SIGINT : SIGKILL);
   CliRun r{rotbeam::test::exit_code(pid), "", slurp(err_file)};
   if (!under_way) r.err += "(not under way: killed)";

@@ -199,7 +199,8 @@ TEST(Reliability, InterruptKeepsACompleteRecord) {
   const pid_t pid = test::start_in_background(
       std::string(ROTBEAM_CLI) + " run --set beam.modes=12 --set simulation.scheme=thesis --set simulation.free_step_s=5e-7 -o " +
       out + " >/dev/null 2>&1");
-  const bool under_way = test::wait_until([&] { return test::runs_and_catches(pid, ROTBEAM_CLI, SIGINT); });
+  const bool under_way =
+      test::wait_until([&] { return test::ended(pid) || test::runs_and_catches(pid, ROTBEAM_CLI, SIGINT); }) && !test::ended(pid);
   ::kill(pid, under_way ? SIGINT : SIGKILL);
   const int code = test::exit_code(pid);
   ASSERT_TRUE(under_way) << "the run did not get under way";
@@ -395,10 +396,12 @@ TEST(Reliability, AnInterruptedPlotLeavesNoScratchNorProcess) {
   const std::string err = tmp + ".stderr";
   const pid_t pid = test::start_in_background("env TMPDIR=" + tmp + " " + std::string(ROTBEAM_CLI) + " modes --plot " + png +
                                               " 2>" + err + " >/dev/null");
-  const bool drawing = test::wait_until([&] {
+  bool drawing = false;
+  test::wait_until([&] {
+    if (test::ended(pid)) return true;  // no use waiting on
     if (!test::runs(pid, ROTBEAM_CLI) || fs::is_empty(tmp)) return false;
     const pid_t child = test::child_of(pid);
-    return child != 0 && !test::runs(child, ROTBEAM_CLI);  // forked, and the interpreter started
+    return drawing = child != 0 && !test::runs(child, ROTBEAM_CLI);  // forked, and the interpreter started
   });
   ::kill(pid, drawing ? SIGINT : SIGKILL);
   const int code = test::exit_code(pid);

@@ -2,6 +2,7 @@
 interrupts it: a fixed sleep fails on a slow machine and, on a fast one, may signal a process that
 has already finished or not yet started, so that the test passes without testing anything."""
 
+import contextlib
 import os
 import signal
 import threading
@@ -30,15 +31,23 @@ def catches(pid, sig=signal.SIGINT):
     return False
 
 
+@contextlib.contextmanager
 def interrupt_once_a_thread_starts():
-    """Sends SIGINT to this process once a thread other than those running now has started: the
-    library's worker, once a call into it is under way (rotbeam runs a long call on a thread of its
-    own while the calling thread waits, watching for Ctrl-C). Call it just before the call."""
+    """Within the block, sends SIGINT to this process once a thread other than those running before
+    it has started: the library's worker, once a call into it is under way (rotbeam runs a long call
+    on a thread of its own while the calling thread waits, watching for Ctrl-C)."""
     before = set(os.listdir("/proc/self/task"))
+    done = threading.Event()
 
     def send():
         me = str(threading.get_native_id())
-        if wait_until(lambda: set(os.listdir("/proc/self/task")) - before - {me}):
+        if wait_until(lambda: done.is_set() or set(os.listdir("/proc/self/task")) - before - {me}) and not done.is_set():
             os.kill(os.getpid(), signal.SIGINT)
 
-    threading.Thread(target=send, daemon=True).start()
+    sender = threading.Thread(target=send, daemon=True)
+    sender.start()
+    try:
+        yield
+    finally:
+        done.set()
+        sender.join()

@@ -203,16 +203,14 @@ def test_one_speed_or_a_numpy_array_is_taken():
 # a stop ends a pass).
 def test_ctrl_c_stops_a_run_within_a_step():
     # A 270° pass at 5 rpm in steps of at most 50 ns: hours.
-    interrupt_once_a_thread_starts()
-    with pytest.raises(KeyboardInterrupt):
+    with pytest.raises(KeyboardInterrupt), interrupt_once_a_thread_starts():
         rotbeam.run(overrides={"hub.speed_rpm": 5, "simulation.end_angle_deg": 270, "output.interval_s": 1e30,
                                "simulation.max_step_s": 5e-8})
 
 
 def test_ctrl_c_stops_the_search_for_the_first_impact():
     # A flexible start at 0.1 rpm with 1 ns steps: hours of search for the first impact.
-    interrupt_once_a_thread_starts()
-    with pytest.raises(KeyboardInterrupt):
+    with pytest.raises(KeyboardInterrupt), interrupt_once_a_thread_starts():
         rotbeam.impact(overrides={"initial.start": "flexible", "initial.modal_velocity": [0.1, 0, 0, 0, 0],
                                   "hub.speed_rpm": 0.1, "simulation.free_step_s": 1e-9})
 
@@ -221,8 +219,7 @@ def test_ctrl_c_stops_a_long_modal_analysis():
     # The elastica's 80 modes at 100 000 speeds: about a quarter of an hour on two cores, the longest
     # modal analysis the ranges allow. More speeds than the command line allows
     # (100 000) are refused.
-    interrupt_once_a_thread_starts()
-    with pytest.raises(KeyboardInterrupt):
+    with pytest.raises(KeyboardInterrupt), interrupt_once_a_thread_starts():
         rotbeam.modes(overrides={"beam.theory": "elastica", "beam.modes": 80}, speeds_rpm=np.linspace(0, 5000, 100000))
     with pytest.raises(rotbeam.ConfigError, match="100001 speeds, more than 100000"):
         rotbeam.modes(speeds_rpm=np.zeros(100001))
