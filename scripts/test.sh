@@ -66,6 +66,7 @@ if [ "$quick" = 1 ]; then
 fi
 
 echo "== AddressSanitizer + UndefinedBehaviorSanitizer tests (all but the tests labelled long)"
+renice -n 0 -g "${background[0]}" > /dev/null 2>&1 || true  # nothing to give way to any more (as root)
 wait "${background[0]}"
 background=()
 rm -f build-asan.log
