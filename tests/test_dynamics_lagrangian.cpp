@@ -13,6 +13,7 @@
 
 #include <functional>
 #include <gtest/gtest.h>
+#include <ostream>
 
 using namespace rotbeam;
 using rotbeam::testing::ReferenceBeam;
@@ -85,6 +86,12 @@ struct Case {
   unsigned seed;
 };
 
+// The cases by their values in the test names (printed as bytes, padding included, they changed
+// from one build to the next).
+void PrintTo(const Case& c, std::ostream* os) {
+  *os << c.n << "modes_" << c.rpm << "rpm_tip" << c.tip_m << "m_seed" << c.seed;
+}
+
 class LagrangianCheck : public ::testing::TestWithParam<Case> {};
 
 TEST_P(LagrangianCheck, MassMatrixAndEveryForceTermMatchTheLagrangian) {
@@ -151,6 +158,10 @@ struct ElasticaCase {
   double tip_m;
   unsigned seed;
 };
+
+void PrintTo(const ElasticaCase& c, std::ostream* os) {
+  *os << c.n << "modes_" << c.rpm << "rpm_tip" << c.tip_m << "m_seed" << c.seed;
+}
 
 class ElasticaLagrangianCheck : public ::testing::TestWithParam<ElasticaCase> {};
 

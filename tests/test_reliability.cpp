@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include "process_support.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -191,15 +192,19 @@ TEST(Reliability, NonFiniteStateIsDiagnosed) {
 }
 
 TEST(Reliability, InterruptKeepsACompleteRecord) {
-  // SIGINT 0.3 s into a run of several seconds (12 modes, thesis scheme, 0.5 µs free steps): exit
-  // 130, three complete files, failure.kind = "interrupted".
+  // SIGINT into a run of several seconds (12 modes, thesis scheme, 0.5 µs free steps), once the run
+  // is under way (its files open and its interrupt handler installed): exit 130, three complete
+  // files, failure.kind = "interrupted".
   const std::string out = fresh_dir("interrupt");
-  const std::string cmd = "sh -c '" + std::string(ROTBEAM_CLI) +
-                          " run --set beam.modes=12 --set simulation.scheme=thesis --set simulation.free_step_s=5e-7 -o " + out +
-                          " >/dev/null 2>&1 & pid=$!; sleep 0.3; kill -INT $pid; wait $pid; exit $?'";
-  const int st = std::system(cmd.c_str());
-  ASSERT_TRUE(WIFEXITED(st));
-  EXPECT_EQ(WEXITSTATUS(st), 130);
+  const pid_t pid = test::start_in_background(
+      std::string(ROTBEAM_CLI) + " run --set beam.modes=12 --set simulation.scheme=thesis --set simulation.free_step_s=5e-7 -o " +
+      out + " >/dev/null 2>&1");
+  const bool under_way =
+      test::wait_until([&] { return test::ended(pid) || test::runs_and_catches(pid, ROTBEAM_CLI, SIGINT); }) && !test::ended(pid);
+  ::kill(pid, under_way ? SIGINT : SIGKILL);
+  const int code = test::exit_code(pid);
+  ASSERT_TRUE(under_way) << "the run did not get under way";
+  EXPECT_EQ(code, 130);
   std::ifstream summary(out + "/summary.json");
   ASSERT_TRUE(summary);
   const auto j = nlohmann::json::parse(summary);
@@ -384,18 +389,24 @@ TEST(Reliability, AnInterruptedPlotLeavesNoScratchNorProcess) {
   // Campbell diagram: before, rotbeam died at once, leaving its scratch table in TMPDIR and the
   // Python process running on as an orphan. Now the signal is passed on, both stop, the scratch
   // file is removed, and the exit is 130 with one line. The signal is sent once the scratch table
-  // exists, while Python (≥ 0.3 s to import matplotlib) starts.
+  // exists and the plotting process runs Python (≥ 0.3 s to import matplotlib).
   const std::string tmp = fresh_dir("plot_interrupt_tmp");
   fs::create_directories(tmp);
   const std::string png = tmp + "_camp.png";
   const std::string err = tmp + ".stderr";
-  const std::string cmd = "sh -c 'TMPDIR=" + tmp + " " + std::string(ROTBEAM_CLI) + " modes --plot " + png + " 2>" + err +
-                          " >/dev/null & pid=$!; i=0; while [ -z \"$(ls " + tmp +
-                          ")\" ] && [ $i -lt 2000 ]; do sleep 0.005; i=$((i+1)); done; sleep 0.05; kill -INT $pid; "
-                          "wait $pid; exit $?'";
-  const int st = std::system(cmd.c_str());
-  ASSERT_TRUE(WIFEXITED(st));
-  EXPECT_EQ(WEXITSTATUS(st), 130);
+  const pid_t pid = test::start_in_background("env TMPDIR=" + tmp + " " + std::string(ROTBEAM_CLI) + " modes --plot " + png +
+                                              " 2>" + err + " >/dev/null");
+  bool drawing = false;
+  test::wait_until([&] {
+    if (test::ended(pid)) return true;  // no use waiting on
+    if (!test::runs(pid, ROTBEAM_CLI) || fs::is_empty(tmp)) return false;
+    const pid_t child = test::child_of(pid);
+    return drawing = child != 0 && !test::runs(child, ROTBEAM_CLI);  // forked, and the interpreter started
+  });
+  ::kill(pid, drawing ? SIGINT : SIGKILL);
+  const int code = test::exit_code(pid);
+  ASSERT_TRUE(drawing) << "the plotting process did not start";
+  EXPECT_EQ(code, 130);
   std::ifstream e(err);
   const std::string message((std::istreambuf_iterator<char>(e)), {});
   EXPECT_EQ(std::count(message.begin(), message.end(), '\n'), 1) << message;
@@ -418,15 +429,14 @@ std::string sleeping_python(const std::string& dir, const std::string& pid_file,
   return script;
 }
 
-// Waits up to 10 s for a file to be written; returns its first word.
+// Waits (for minutes at most) for a file to be written; returns its first word.
 std::string wait_for_word(const std::string& file) {
-  for (int i = 0; i < 2000; ++i) {
+  std::string word;
+  test::wait_until([&] {
     std::ifstream in(file);
-    std::string word;
-    if (in >> word) return word;
-    usleep(5000);
-  }
-  return "";
+    return static_cast<bool>(in >> word);
+  });
+  return word;
 }
 
 // True while the process runs (a zombie, ended but not yet reaped, does not count).
@@ -442,20 +452,20 @@ bool process_runs(const std::string& pid) {
 TEST(Reliability, AKilledRotbeamTakesItsPlottingProcessAlong) {
   // kill -9 of `rotbeam plot`/`animate`/`modes --plot` left the Python process running as an
   // orphan: its pictures appeared seconds after the killed command exited 137. The module now dies
-  // with rotbeam (SIGTERM). The stand-in sleeps 30 s; it must be gone 2 s after the kill.
+  // with rotbeam (SIGTERM). The stand-in sleeps ten minutes; it must be gone long before (it is
+  // given two minutes), once rotbeam is killed after the stand-in has started.
   const std::string dir = fresh_dir("killed_plot");
   fs::create_directories(dir);
   const std::string pid_file = dir + "/pid";
-  const std::string python = sleeping_python(dir, pid_file, 30);
-  const std::string cmd = "sh -c 'TMPDIR=" + dir + " ROTBEAM_PYTHON=" + python + " " + std::string(ROTBEAM_CLI) +
-                          " modes --plot " + dir + "/c.png >/dev/null 2>&1 & pid=$!; i=0; while [ ! -s " + pid_file +
-                          " ] && [ $i -lt 2000 ]; do sleep 0.005; i=$((i+1)); done; kill -KILL $pid; wait $pid; exit $?'";
-  const int st = std::system(cmd.c_str());
-  ASSERT_TRUE(WIFEXITED(st));
-  EXPECT_EQ(WEXITSTATUS(st), 128 + SIGKILL);
+  const std::string python = sleeping_python(dir, pid_file, 600);
+  const pid_t pid = test::start_in_background("env TMPDIR=" + dir + " ROTBEAM_PYTHON=" + python + " " +
+                                              std::string(ROTBEAM_CLI) + " modes --plot " + dir + "/c.png >/dev/null 2>&1");
+  test::wait_until([&] { return fs::exists(pid_file) && fs::file_size(pid_file) > 0; });
+  ::kill(pid, SIGKILL);
+  EXPECT_EQ(test::exit_code(pid), 128 + SIGKILL);
   const std::string child = wait_for_word(pid_file);
   ASSERT_FALSE(child.empty());
-  for (int i = 0; i < 400 && process_runs(child); ++i) usleep(5000);
+  test::wait_until([&] { return !process_runs(child); }, std::chrono::seconds(120));
   EXPECT_FALSE(process_runs(child)) << "the plotting process " << child << " outlived the killed rotbeam";
   if (process_runs(child)) ::kill(std::stoi(child), SIGKILL);
   fs::remove_all(dir);
@@ -464,24 +474,27 @@ TEST(Reliability, AKilledRotbeamTakesItsPlottingProcessAlong) {
 TEST(Reliability, ARunIsRefusedInAFolderBeingDrawn) {
   // `plot DIR` read and drew the files while `run -o DIR` replaced them: the folder ended with the
   // new run beside pictures of the older one. plot and animate hold the folder's lock while they
-  // draw, so the run is refused (exit 2). The stand-in interpreter keeps the plot drawing for 3 s.
+  // draw, so the run is refused (exit 2). The stand-in interpreter keeps the plot drawing until it
+  // is ended at the end of the test.
   const std::string dir = fresh_dir("drawn");
   const std::string out = dir + "/run";
   fs::create_directories(dir);
   const std::string args = "run --set hub.speed_rpm=3000 --set simulation.end_angle_deg=0 -o OUT";
   ASSERT_EQ(run(args, out).status, 0);
   const std::string pid_file = dir + "/pid";
-  const std::string python = sleeping_python(dir, pid_file, 3);
+  const std::string python = sleeping_python(dir, pid_file, 600);
   const std::string plot = "ROTBEAM_PYTHON=" + python + " " + std::string(ROTBEAM_CLI) + " plot " + out + " >/dev/null 2>&1";
   std::FILE* drawing = ::popen(plot.c_str(), "r");
   ASSERT_NE(drawing, nullptr);
-  ASSERT_FALSE(wait_for_word(pid_file).empty());
+  const std::string stand_in = wait_for_word(pid_file);
+  ASSERT_FALSE(stand_in.empty());
   const Outcome o = run(args, out);
   EXPECT_EQ(o.status, 2) << o.err;
   EXPECT_NE(o.err.find("another rotbeam run is writing into this folder"), std::string::npos) << o.err;
   const Outcome second = run("plot OUT", out);
   EXPECT_EQ(second.status, 2) << second.err;
   EXPECT_NE(second.err.find("draw it once that has finished"), std::string::npos) << second.err;
+  ::kill(std::stoi(stand_in), SIGTERM);
   ::pclose(drawing);
   fs::remove_all(dir);
 }
