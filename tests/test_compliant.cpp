@@ -120,6 +120,12 @@ TEST(Compliant, YigitsRestitutionAtTheApproachSpeed) {
   law.impact.model = RestitutionModel::constant;
   law.impact.constant = 0.3;
   EXPECT_NEAR(single_mass_restitution(k, hertz_damping(law, 2.0, 7.0), 1e-5, 2.0), 0.3, 1e-4);
+  // The rigid law's plastic floor does not enter: a slow touch (14 mm/s, above the 1 mm/s floor)
+  // reaches its e whatever impact.plastic_below_m_s holds (it divided c by 0.063 m/s: 0.547 for 2.477 s/m).
+  for (double floor : {0.0, 0.063, 0.5}) {
+    law.impact.plastic_below_m_s = floor;
+    EXPECT_NEAR(single_mass_restitution(k, hertz_damping(law, 0.014, 7.0), 1e-6, 0.014), 0.3, 1e-4) << floor;
+  }
 }
 
 TEST(Compliant, TheForceNeverPullsAndVanishesOutsideContact) {

@@ -1,11 +1,19 @@
 // Reliability III (docs/reliability.md): passes that advance at every time and honour every stop.
+#include "rotbeam/brush.hpp"
+#include "rotbeam/brush_output.hpp"
 #include "rotbeam/case.hpp"
 #include "rotbeam/sample_grid.hpp"
 #include "rotbeam/stop_token.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <random>
 
 using namespace rotbeam;
@@ -99,4 +107,71 @@ TEST(ReliabilityIII, AStopEndsTheRowsOfALongStepOnAFineGrid) {
   ASSERT_TRUE(r.failure);
   EXPECT_EQ(r.failure->kind, FailureKind::interrupted);
   EXPECT_LE(sink.rows_after_stop, 1100);
+}
+
+namespace {
+bool warns_of(const PassResult& r, const std::string& words) {
+  for (const std::string& w : r.summary.warnings)
+    if (w.find(words) != std::string::npos) return true;
+  return false;
+}
+}  // namespace
+
+TEST(ReliabilityIII, ACompliantTipThroughTheDepthIsOutsideHertzsTheory) {
+  // A soft surface (E_s = 1 kPa) or a vanishing tip radius let the tip through the whole depth
+  // (δ = pL = 1.27 mm) with validity "within" and no word. Hertz's law holds for δ ≪ R: beyond
+  // 0.1 R the pass warns and is at the edge; the base case (δ of micrometres, 0.02 R) does not.
+  for (const char* key : {"surface.youngs_modulus_pa=1e3", "contact.tip_radius_m=1e-9"}) {
+    const PassResult r = run_case(build_case(load_config_string("", {"contact.model=hertz", key})));
+    EXPECT_TRUE(warns_of(r, "exceeds")) << key;
+    EXPECT_TRUE(warns_of(r, "a tenth of the tip radius")) << key;
+    EXPECT_NE(r.summary.validity, Validity::within) << key;
+  }
+  for (const char* speed : {"hub.speed_rpm=550", "hub.speed_rpm=3000"}) {
+    const PassResult r = run_case(build_case(load_config_string("", {"contact.model=hertz", speed})));
+    ASSERT_FALSE(r.failure) << speed;
+    EXPECT_FALSE(warns_of(r, "a tenth of the tip radius")) << speed;
+  }
+}
+
+TEST(ReliabilityIII, ABrushWithNoFinishedFilamentReportsNoResultNotZero) {
+  // Every filament of the example brush stops on its second impact: the summary said "mean force
+  // 0.0000 N", "no filament touched the surface" and sweep.csv held 0. A brush without a finished
+  // filament has no force, torque, power, zone or ledger: NaN (null in summary.json, an empty cell
+  // in sweep.csv).
+  const Config config = load_config(std::string(ROTBEAM_SOURCE_DIR) + "/examples/brush.toml", {"simulation.max_impacts=1"});
+  const BrushResult r = run_brush(config);
+  const BrushSummary& s = r.summary;
+  ASSERT_GT(s.reaching, 0);
+  ASSERT_EQ(s.steady + s.not_steady, 0);
+  for (double v : {s.mean_normal_force_n, s.mean_tangential_force_n, s.peak_normal_force_n, s.mean_hub_torque_n_m,
+                   s.mean_hub_power_w, s.force_ratio, s.contact_zone_width_m, s.ledger[LedgerTerm::hub_work]})
+    EXPECT_TRUE(std::isnan(v)) << v;
+  // summary.json: written as null.
+  const nlohmann::json j = nlohmann::json::parse(brush_summary_json(r, config).dump());
+  EXPECT_TRUE(j.at("mean_normal_force_n").is_null());
+  // One finished filament is a result again (the sums over it are numbers).
+  const BrushResult one = run_brush(load_config(std::string(ROTBEAM_SOURCE_DIR) + "/examples/brush.toml",
+                                                {"brush.filaments=1", "brush.rows=1"}));
+  EXPECT_GT(one.summary.mean_normal_force_n, 0.0);
+}
+
+TEST(ReliabilityIII, ALongPassIsAnnouncedAndReportsProgressInALog) {
+  // The elastica at 80 modes took two minutes for 1546 steps with nothing said where stderr is not a
+  // terminal. The pass is announced with its step count and the measured time of a step, and a log
+  // gets a progress line after 10 s; SIGINT at 14 s ends it as interrupted.
+  const std::string out = ::testing::TempDir() + "rotbeam_rel3_long_" + std::to_string(getpid());
+  const std::string err = out + ".stderr";
+  const std::string cmd = std::string("timeout -s INT 14 ") + ROTBEAM_CLI +
+                          " run --set beam.theory=elastica --set beam.modes=80 -o " + out + " > /dev/null 2> " + err;
+  const int status = std::system(cmd.c_str());
+  std::ifstream in(err);
+  const std::string text((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 124) << text;  // timeout's code: it had to stop it
+  EXPECT_NE(text.find("rotbeam: note: the pass takes at least "), std::string::npos) << text;
+  EXPECT_NE(text.find("ms each (80 modes, beam.theory = \"elastica\")"), std::string::npos) << text;
+  EXPECT_NE(text.find("rotbeam: progress: θ = "), std::string::npos) << text;
+  EXPECT_NE(text.find("interrupted at t = "), std::string::npos) << text;
+  std::filesystem::remove_all(out);
+  std::filesystem::remove(err);
 }

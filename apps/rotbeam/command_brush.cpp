@@ -33,25 +33,35 @@ void print_summary(const Config& config, const BrushResult& r, const std::string
             << modes_text(config) << "\n";
   std::cout << "  filaments             " << s.steady << " steady, " << s.not_steady << " not steady, " << s.failed
             << " failed, " << s.filaments - s.reaching << " clear of the surface\n";
-  std::cout << "  mean force            " << fixed(s.mean_normal_force_n, 4) << " N normal, "
-            << fixed(s.mean_tangential_force_n, 4) << " N tangential (over a revolution)\n";
-  std::cout << "  peak binned force     " << fixed(s.peak_normal_force_n, 4) << " N normal, "
-            << fixed(s.peak_tangential_force_n, 4) << " N tangential (per " << number_text(s.bin_deg)
-            << "° bin of hub angle)\n";
-  std::cout << "  hub                   mean torque " << s.mean_hub_torque_n_m * 1e3 << " mN m, mean power "
-            << s.mean_hub_power_w * 1e3 << " mW\n";
-  if (std::isfinite(s.contact_zone_from_deg))
-    std::cout << "  contact zone          " << fixed(s.contact_zone_from_deg, 3) << "° to "
-              << fixed(s.contact_zone_to_deg, 3) << "° of a filament's angle, " << fixed(s.contact_zone_width_m * 1e3, 3)
-              << " mm along the surface\n";
-  else
-    std::cout << "  contact zone          none: no filament touched the surface\n";
-  std::cout << "  ledger per revolution hub " << s.ledger[LedgerTerm::hub_work] * 1e3 << " mJ, friction " << s.ledger[LedgerTerm::friction_work] * 1e3
-            << (s.ledger[LedgerTerm::surface_work] != 0.0 ? " mJ, surface " + number_text(s.ledger[LedgerTerm::surface_work] * 1e3) : std::string())
-            << " mJ, damping " << s.ledger[LedgerTerm::damping_work] * 1e3 << " mJ, impacts " << s.ledger[LedgerTerm::impact_loss] * 1e3
-            << " mJ, residual " << s.ledger_residual_max_j << " J\n";
-  std::cout << "  dimensionless         p = " << s.depth_ratio << ", Ω/ω₁ = " << s.speed_ratio
-            << ", F/(3EI·pL/L³) per filament = " << s.force_ratio << "\n";
+  if (s.reaching > 0 && s.steady + s.not_steady == 0) {
+    // No filament that reaches the surface finished: no force, torque or zone to report.
+    std::cout << "  results               none: no filament that reaches the surface finished (" << s.failed
+              << " failed or not run)\n";
+  } else {
+    std::cout << "  mean force            " << fixed(s.mean_normal_force_n, 4) << " N normal, "
+              << fixed(s.mean_tangential_force_n, 4) << " N tangential (over a revolution)\n";
+    std::cout << "  peak binned force     " << fixed(s.peak_normal_force_n, 4) << " N normal, "
+              << fixed(s.peak_tangential_force_n, 4) << " N tangential (per " << number_text(s.bin_deg)
+              << "° bin of hub angle)\n";
+    std::cout << "  hub                   mean torque " << s.mean_hub_torque_n_m * 1e3 << " mN m, mean power "
+              << s.mean_hub_power_w * 1e3 << " mW\n";
+    if (std::isfinite(s.contact_zone_from_deg))
+      std::cout << "  contact zone          " << fixed(s.contact_zone_from_deg, 3) << "° to "
+                << fixed(s.contact_zone_to_deg, 3) << "° of a filament's angle, "
+                << fixed(s.contact_zone_width_m * 1e3, 3) << " mm along the surface\n";
+    else
+      std::cout << "  contact zone          none: no filament touched the surface\n";
+    std::cout << "  ledger per revolution hub " << s.ledger[LedgerTerm::hub_work] * 1e3 << " mJ, friction "
+              << s.ledger[LedgerTerm::friction_work] * 1e3
+              << (s.ledger[LedgerTerm::surface_work] != 0.0
+                      ? " mJ, surface " + number_text(s.ledger[LedgerTerm::surface_work] * 1e3)
+                      : std::string())
+              << " mJ, damping " << s.ledger[LedgerTerm::damping_work] * 1e3 << " mJ, impacts "
+              << s.ledger[LedgerTerm::impact_loss] * 1e3 << " mJ, residual " << s.ledger_residual_max_j << " J\n";
+  }
+  std::cout << "  dimensionless         p = " << s.depth_ratio << ", Ω/ω₁ = " << s.speed_ratio;
+  if (std::isfinite(s.force_ratio)) std::cout << ", F/(3EI·pL/L³) per filament = " << s.force_ratio;
+  std::cout << "\n";
   std::cout << "  wall time             " << fixed(s.wall_time_s, 2) << " s\n";
   for (const std::string& w : s.warnings) std::cout << "  warning: " << w << "\n";
   std::cout << "  wrote " << (std::filesystem::path(dir) / "workpiece.csv").string()

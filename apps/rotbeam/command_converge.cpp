@@ -64,7 +64,13 @@ int run_converge(const ConvergeOptions& o) {
   const Config config = o.case_options.load_filament("converge");
   ConvergenceLadder ladder;
   if (!o.rtols.empty()) ladder.rtols = parse_list<double>(o.rtols, "--rtols");
-  if (!o.steps.empty()) ladder.thesis_free_steps = parse_list<double>(o.steps, "--steps");
+  // The thesis's scheme has no compliant contact: under hertz its ladder is left out, and refused when asked for.
+  const bool compliant = config.contact.model != ContactModel::rigid;
+  if (o.steps == "none" || (compliant && o.steps.empty())) ladder.thesis_free_steps.clear();
+  else if (!o.steps.empty()) ladder.thesis_free_steps = parse_list<double>(o.steps, "--steps");
+  if (compliant && !ladder.thesis_free_steps.empty())
+    throw ConfigError("--steps " + o.steps + ": the thesis scheme's ladder, which has no compliant contact (contact.model = \"" +
+                      contact_model_name(config.contact.model) + "\"): leave --steps out or give --steps none");
   if (!o.modes.empty()) ladder.modes = parse_list<int>(o.modes, "--modes", max_modes(config.beam.theory));
   for (double r : ladder.rtols) check_as_key("--rtols", o.rtols, "simulation.rtol", r);
   for (double h : ladder.thesis_free_steps) {  // contact step h/10, fine step h/100
@@ -136,7 +142,7 @@ Command add_converge_command(CLI::App& app) {
   opts->case_options.add_to(*sub);
   sub->add_option("--rtols", opts->rtols, "Adaptive tolerances, comma-separated (default 1e-6,1e-8,1e-10,1e-12; the smallest is the reference)")
       ->check(non_empty_list("1e-6,1e-8"));
-  sub->add_option("--steps", opts->steps, "Thesis free-flight steps [s] (contact step = step/10; default 1e-6,4e-7,2e-7,1e-7: the thesis's step, then halvings where the scheme is first order)")
+  sub->add_option("--steps", opts->steps, "Thesis free-flight steps [s] (contact step = step/10; default 1e-6,4e-7,2e-7,1e-7: the thesis's step, then halvings where the scheme is first order; none: no thesis runs, the default under contact.model = \"hertz\")")
       ->check(non_empty_list("1e-6,5e-7"));
   sub->add_option("--modes", opts->modes, "Mode counts (default 3,5,8,12)")
       ->check(non_empty_list("3,5,8"));

@@ -96,6 +96,8 @@ void print_summary(const Config& config, const PassResult& r, const std::string&
 // (six or seven evaluations of q̈ at 0.6 µs, docs/performance.md; 3.7 µs measured), more with more
 // modes, so an hour and more.
 constexpr double kLongPassSteps = 1e9;
+// Passes estimated to take longer than this [s] (of wall time) are announced too.
+constexpr double kLongPassSeconds = 10.0;
 
 int run_pass_command(const RunOptions& o) {
   const Config config = o.case_options.load_filament("run");
@@ -116,6 +118,15 @@ int run_pass_command(const RunOptions& o) {
               << (steps.at_least ? "takes at least " : "may take up to about ") << count << " steps (" << span << " s of "
               << steps.governed << " in steps of " << (steps.at_least ? "at most " : "") << number_text(steps.step_s)
               << " s), hours at a few microseconds a step" << std::endl;
+  } else if (steps.wall_s > kLongPassSeconds && !o.quiet) {
+    // Steps that are each long (many modes, the elastica): the time, from an evaluation timed here.
+    char count[32], each[32];
+    std::snprintf(count, sizeof count, "%.3g", steps.steps);
+    std::snprintf(each, sizeof each, "%.3g", steps.wall_s / steps.steps * 1e3);
+    std::cerr << "rotbeam: note: the pass " << (steps.at_least ? "takes at least " : "may take up to about ") << count
+              << " steps of about " << each << " ms each (" << config.beam.modes << " modes, beam.theory = \""
+              << beam_theory_name(config.beam.theory) << "\"), " << (steps.at_least ? "at least " : "up to about ")
+              << duration_text(steps.wall_s) << std::endl;
   }
   std::unique_ptr<PassFiles> files_owner;
   try {

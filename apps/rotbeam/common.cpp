@@ -34,7 +34,7 @@ Config CaseOptions::load_filament(const std::string& command) const {
   return c;
 }
 
-PassProgressLine::PassProgressLine(bool quiet) : active_(!quiet && isatty(STDERR_FILENO)) {}
+PassProgressLine::PassProgressLine(bool quiet) : active_(!quiet), terminal_(isatty(STDERR_FILENO)) {}
 
 PassProgressLine::~PassProgressLine() {
   if (shown_) std::fprintf(stderr, "\r%80s\r", "");
@@ -44,26 +44,29 @@ std::function<void(const PassProgress&)> PassProgressLine::callback() {
   if (!active_) return {};
   return [this](const PassProgress& p) {
     if (p.elapsed_s < 1.0) return;
+    // On a terminal one line redrawn in place; in a log (a batch job, a pipe) a whole line at
+    // kLogProgressFirst and every kLogProgressInterval after, so that a long pass says how far it is
+    // where nobody watches a terminal.
+    if (!terminal_) {
+      if (p.elapsed_s < next_log_s_) return;
+      next_log_s_ = p.elapsed_s + kLogProgressInterval;
+    }
+    const char* start = terminal_ ? "\r  " : "rotbeam: progress: ";
+    const char* end = terminal_ ? "   " : "\n";
     const double done = (p.theta_deg - p.start_deg) / (p.end_deg - p.start_deg);
     const double eta = done > 0 ? p.elapsed_s * (1 - done) / done : 0.0;
     if (!p.stage.empty()) {
-      std::fprintf(stderr, "\r  %s, %d revolutions run, section distance %.2e, %s elapsed   ", p.stage.c_str(),
-                   p.revolution, p.section_distance, duration_text(p.elapsed_s).c_str());
-      std::fflush(stderr);
-      shown_ = true;
-      return;
+      std::fprintf(stderr, "%s%s, %d revolutions run, section distance %.2e, %s elapsed%s", start, p.stage.c_str(),
+                   p.revolution, p.section_distance, duration_text(p.elapsed_s).c_str(), end);
+    } else if (p.revolutions > 0) {
+      std::fprintf(stderr, "%srevolution %d of %d, section distance %.2e, %s elapsed, ETA %s%s", start, p.revolution,
+                   p.revolutions, p.section_distance, duration_text(p.elapsed_s).c_str(), duration_text(eta).c_str(), end);
+    } else {
+      std::fprintf(stderr, "%sθ = %.2f° of %.1f° (%.0f %%), %ld steps, %s elapsed, ETA %s%s", start, p.theta_deg,
+                   p.end_deg, 100 * done, p.steps, duration_text(p.elapsed_s).c_str(), duration_text(eta).c_str(), end);
     }
-    if (p.revolutions > 0) {
-      std::fprintf(stderr, "\r  revolution %d of %d, section distance %.2e, %s elapsed, ETA %s   ", p.revolution,
-                   p.revolutions, p.section_distance, duration_text(p.elapsed_s).c_str(), duration_text(eta).c_str());
-      std::fflush(stderr);
-      shown_ = true;
-      return;
-    }
-    std::fprintf(stderr, "\r  θ = %.2f° of %.1f° (%.0f %%), %ld steps, %s elapsed, ETA %s   ", p.theta_deg, p.end_deg,
-                 100 * done, p.steps, duration_text(p.elapsed_s).c_str(), duration_text(eta).c_str());
     std::fflush(stderr);
-    shown_ = true;
+    shown_ = terminal_;
   };
 }
 

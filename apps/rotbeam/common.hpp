@@ -49,8 +49,9 @@ struct CaseOptions {
   Config load_filament(const std::string& command) const;
 };
 
-/// The progress line of a pass on stderr when it is a terminal (from one second on), cleared at the
-/// end; nothing when stderr is not a terminal or `quiet`.
+/// The progress of a pass on stderr: on a terminal one line redrawn from one second on and cleared
+/// at the end; otherwise (a log) a line "rotbeam: progress: …" at 10 s, then every minute; nothing
+/// with `quiet`.
 class PassProgressLine {
 public:
   explicit PassProgressLine(bool quiet);
@@ -59,7 +60,10 @@ public:
   std::function<void(const PassProgress&)> callback();
 
 private:
-  bool active_ = false, shown_ = false;
+  static constexpr double kLogProgressFirst = 10.0;     // [s] to the first progress line in a log
+  static constexpr double kLogProgressInterval = 60.0;  // [s] between the next ones
+  bool active_ = false, terminal_ = false, shown_ = false;
+  double next_log_s_ = kLogProgressFirst;
 };
 
 /// A progress line of a study (many runs) on stderr when it is a terminal, redrawn every second so

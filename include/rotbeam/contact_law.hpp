@@ -64,6 +64,9 @@ struct ContactSettings {
 /// "rigid", "hertz": contact.model's values.
 const char* contact_model_name(ContactModel m);
 
+/// The tip radius R [m]: hertz.tip_radius_m, or the wire's radius D/2 when that is 0.
+double hertz_tip_radius(const HertzContact& hertz, double wire_diameter_m);
+
 /// k = (4/3) E* √R × stiffness_factor [N/m^{3/2}] for a wire of modulus `wire_youngs_pa` [Pa] and diameter
 /// `wire_diameter_m` [m] (R = hertz.tip_radius_m, or D/2 when that is 0). SPEC §11.
 double hertz_stiffness(const HertzContact& hertz, double wire_youngs_pa, double wire_diameter_m);
@@ -78,14 +81,20 @@ double hertz_stiffness(const HertzContact& hertz, double wire_youngs_pa, double 
 /// e throw std::domain_error.
 double hunt_crossley_product(double e);
 
+/// Hertz's theory holds for a contact radius a = √(Rδ) small against the tip radius R: up to
+/// δ = kHertzValidPenetration·R (a/R ≈ 0.3).
+inline constexpr double kHertzValidPenetration = 0.1;
+
 /// The smallest restitution the compliant law reproduces (hunt_crossley_product).
 inline constexpr double kMinCompliantRestitution = 0.05;
+/// The approach speed [m/s] below which the compliant law's damping is that of this speed.
+inline constexpr double kGrazingSpeedFloor = 1e-3;
 
 /// The damping c [s/m] of a compliant contact that starts with normal approach speed v0 = Ċ [m/s]
 /// and full tip speed `full_speed` [m/s]: e from law.impact (a constant, or Yigit's e(v) capped,
-/// without the plastic floor, and at least kMinCompliantRestitution), c = hunt_crossley_product(e) /
-/// max(v0, impact.plastic_below_m_s, 1e-3 m/s). The speed floor bounds c for grazing touches (their
-/// restitution is then above e). SPEC §11.
+/// without the rigid law's plastic floor impact.plastic_below_m_s, and at least
+/// kMinCompliantRestitution), c = hunt_crossley_product(e) / max(v0, kGrazingSpeedFloor). The speed
+/// floor bounds c for grazing touches (their restitution is then above e). SPEC §11.
 double hertz_damping(const ContactSettings& law, double v0, double full_speed);
 
 /// The Hertz normal force F_n = max(0, k δ^{3/2}(1 + c δ̇)) [N] for the stiffness k [N/m^{3/2}] at
@@ -248,6 +257,9 @@ public:
                             BeamWorkspace& ws, TipKinematics& tip) const = 0;
   /// The energy the contact stores at (t, q), part of the ledger's energy [J] (0 for a rigid contact).
   virtual double stored_energy(const System& system, double t, const Eigen::Ref<const Eigen::VectorXd>& q) const;
+  /// The penetration δ [m] up to which the law's theory holds; 0 for a law without penetration (the
+  /// rigid law). The pass warns and marks its validity "edge" where δ goes beyond it.
+  virtual double largest_valid_penetration() const { return 0.0; }
   /// The failure an inadmissible evaluation means, and its message.
   virtual FailureKind failure_kind(const ContactEvaluation& e) const;
   virtual std::string failure_message(const ContactEvaluation& e) const;

@@ -47,8 +47,12 @@ ContactLoad contact_load(const FrictionModel& friction, const TipKinematics& tip
 
 const char* contact_model_name(ContactModel m) { return m == ContactModel::hertz ? "hertz" : "rigid"; }
 
+double hertz_tip_radius(const HertzContact& hertz, double wire_diameter_m) {
+  return hertz.tip_radius_m > 0.0 ? hertz.tip_radius_m : 0.5 * wire_diameter_m;
+}
+
 double hertz_stiffness(const HertzContact& hertz, double wire_youngs_pa, double wire_diameter_m) {
-  const double radius = hertz.tip_radius_m > 0.0 ? hertz.tip_radius_m : 0.5 * wire_diameter_m;
+  const double radius = hertz_tip_radius(hertz, wire_diameter_m);
   const double inverse = (1.0 - hertz.wire_poisson * hertz.wire_poisson) / wire_youngs_pa +
                          (1.0 - hertz.surface_poisson * hertz.surface_poisson) / hertz.surface_youngs_modulus_pa;
   return hertz.stiffness_factor * 4.0 / 3.0 / inverse * std::sqrt(radius);
@@ -72,7 +76,7 @@ double hertz_damping(const ContactSettings& law, double v0, double full_speed) {
   ImpactLaw impact = law.impact;
   impact.plastic_below_m_s = 0.0;  // a compliant contact resolves slow touches in time
   const double e = std::max(restitution(impact, std::abs(v0), full_speed), kMinCompliantRestitution);
-  const double speed = std::max({std::abs(v0), law.impact.plastic_below_m_s, 1e-3});
+  const double speed = std::max(std::abs(v0), kGrazingSpeedFloor);
   return hunt_crossley_product(e) / speed;
 }
 

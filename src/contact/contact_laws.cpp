@@ -8,7 +8,8 @@ std::shared_ptr<const ContactLaw> make_contact_law(const ContactSettings& settin
                                                    double wire_diameter_m) {
   switch (settings.model) {
     case ContactModel::hertz:
-      return make_hertz_law(settings, hertz_stiffness(settings.hertz, wire_youngs_pa, wire_diameter_m));
+      return make_hertz_law(settings, hertz_stiffness(settings.hertz, wire_youngs_pa, wire_diameter_m),
+                            hertz_tip_radius(settings.hertz, wire_diameter_m));
     case ContactModel::rigid: break;
   }
   return make_rigid_law(settings);

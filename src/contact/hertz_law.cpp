@@ -22,7 +22,8 @@ constexpr std::array<ContactRoot, 1> kCompliantRoots = {{{"δ = 0", true, "the g
 
 class HertzLaw final : public ContactLaw {
 public:
-  HertzLaw(const ContactSettings& settings, double stiffness) : ContactLaw(settings), stiffness_(stiffness) {}
+  HertzLaw(const ContactSettings& settings, double stiffness, double tip_radius)
+      : ContactLaw(settings), stiffness_(stiffness), tip_radius_(tip_radius) {}
 
   const char* name() const override { return "hertz"; }
   bool has_thesis_scheme() const override { return false; }
@@ -66,6 +67,8 @@ public:
     return -gap(system.beam, system.surface, t, q);
   }
 
+  double largest_valid_penetration() const override { return kHertzValidPenetration * tip_radius_; }
+
   double stored_energy(const System& system, double t, const Eigen::Ref<const Eigen::VectorXd>& q) const override {
     return hertz_elastic_energy(stiffness_, gap(system.beam, system.surface, t, q));
   }
@@ -91,13 +94,14 @@ public:
   }
 
 private:
-  double stiffness_;  // k [N/m^{3/2}]
+  double stiffness_;   // k [N/m^{3/2}]
+  double tip_radius_;  // R [m]
 };
 
 }  // namespace
 
-std::shared_ptr<const ContactLaw> make_hertz_law(const ContactSettings& settings, double stiffness) {
-  return std::make_shared<HertzLaw>(settings, stiffness);
+std::shared_ptr<const ContactLaw> make_hertz_law(const ContactSettings& settings, double stiffness, double tip_radius) {
+  return std::make_shared<HertzLaw>(settings, stiffness, tip_radius);
 }
 
 }  // namespace rotbeam

@@ -13,7 +13,7 @@ namespace rotbeam {
 std::shared_ptr<const ContactLaw> make_rigid_law(const ContactSettings& settings);
 
 /// Hertz sphere-on-flat compliance with Hunt–Crossley damping and regularised friction, of contact
-/// stiffness `stiffness` k [N/m^{3/2}] (hertz_law.cpp).
-std::shared_ptr<const ContactLaw> make_hertz_law(const ContactSettings& settings, double stiffness);
+/// stiffness `stiffness` k [N/m^{3/2}] and tip radius R [m] (hertz_law.cpp).
+std::shared_ptr<const ContactLaw> make_hertz_law(const ContactSettings& settings, double stiffness, double tip_radius);
 
 }  // namespace rotbeam

@@ -1,5 +1,7 @@
 #include "validity_monitor.hpp"
 
+#include "rotbeam/kinematics.hpp"
+
 #include <algorithm>
 #include <sstream>
 
@@ -13,7 +15,10 @@ constexpr double kReachCheckRatio = 0.3;
 
 void ValidityMonitor::start(double t, const Eigen::VectorXd& q, const Eigen::VectorXd&) { track(t, q); }
 
-void ValidityMonitor::step(const StepView& v) { track(v.t, v.q); }
+void ValidityMonitor::step(const StepView& v) {
+  track(v.t, v.q);
+  if (v.phase == Phase::contact) track_penetration(v.t, v.q);
+}
 
 void ValidityMonitor::open_revolution(double, const Eigen::VectorXd& q, const Eigen::VectorXd&) {
   rev_max_ratio_ = ctx_.system.beam.tip_deflection(q) / ctx_.system.beam.beam_length();
@@ -70,6 +75,24 @@ void ValidityMonitor::track(double t, const Eigen::VectorXd& q) {
       }
     }
   }
+}
+
+// A compliant contact's penetration beyond its law's theory (Hertz: δ ≤ 0.1 R, docs/contact.md):
+// warned once, and the pass's validity is at its edge (the force law is extrapolated).
+void ValidityMonitor::track_penetration(double t, const Eigen::VectorXd& q) {
+  const double limit = ctx_.system.law.largest_valid_penetration();
+  if (!(limit > 0.0) || penetration_warned_) return;
+  const double delta = gap(ctx_.system.beam, ctx_.system.surface, t, q);
+  if (!(delta > limit)) return;
+  penetration_warned_ = true;
+  PassSummary& s = ctx_.result.summary;
+  if (s.validity == Validity::within) s.validity = Validity::edge;
+  std::ostringstream m;
+  m.precision(3);
+  m << "the penetration " << delta << " m exceeds " << limit
+    << " m, a tenth of the tip radius (contact.tip_radius_m): Hertz's law, a small contact against the tip's "
+       "radius, is extrapolated beyond its validity (docs/contact.md)";
+  journal_.warn(t, q, m.str());
 }
 
 }  // namespace rotbeam

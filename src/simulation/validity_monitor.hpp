@@ -25,11 +25,12 @@ public:
 
 private:
   void track(double t, const Eigen::VectorXd& q);
+  void track_penetration(double t, const Eigen::VectorXd& q);
 
   PassContext& ctx_;
   PassJournal& journal_;
   double rev_max_ratio_ = 0;
-  bool deflection_warned_ = false, geometry_warned_ = false, breached_ = false;
+  bool deflection_warned_ = false, geometry_warned_ = false, penetration_warned_ = false, breached_ = false;
   double breach_ratio_ = 0;
 };
 

@@ -335,6 +335,16 @@ BrushResult run_brush(const Config& config, const BrushOptions& options) {
   s.speed_ratio = omega / omega1;
   const double static_force = 3.0 * ei * config.surface.depth_fraction * l / (l * l * l);
   s.force_ratio = s.filaments > 0 ? s.mean_normal_force_n / s.filaments / static_force : 0.0;
+  if (s.reaching > 0 && s.steady + s.not_steady == 0) {
+    // Every filament that reaches the surface failed or was not run: the brush has no force, torque,
+    // power or contact zone to report (NaN, null in summary.json, empty in sweep.csv), not zeros.
+    for (double* v : {&s.mean_normal_force_n, &s.mean_tangential_force_n, &s.peak_normal_force_n,
+                      &s.peak_tangential_force_n, &s.peak_normal_at_deg, &s.mean_hub_torque_n_m, &s.mean_hub_power_w,
+                      &s.contact_zone_deg, &s.contact_zone_width_m, &s.force_ratio, &s.ledger_residual_max_j})
+      *v = NAN;
+    s.ledger.value.fill(NAN);
+    s.ledger.energy_change_j = NAN;
+  }
   if (s.not_steady > 0)
     s.warnings.push_back(std::to_string(s.not_steady) + " of " + std::to_string(s.reaching) +
                          " filaments did not reach their steady state within simulation.revolutions = " +

@@ -5,6 +5,8 @@
 #include "rotbeam/steady_state.hpp"
 
 #include <algorithm>
+#include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -44,6 +46,12 @@ PassResult run_case(const Case& c, const PassControl& control) {
 }
 
 FirstImpactResult run_first_impact(const Case& c, const PassControl& control) {
+  // The first impact is the rigid law's momentum balance at the first touch; a compliant contact has
+  // none (it is a force over time, resolved by a pass).
+  if (c.law->kind(Phase::contact) == PhaseKind::force)
+    throw ConfigError(std::string("contact.model = \"") + c.law->name() +
+                      "\": the first impact is the rigid law's momentum balance; a compliant contact is resolved in "
+                      "time: run the case (`rotbeam run`: its first contact_start and contact_end events)");
   return first_impact(c.system(), c.initial, c.options.end_angle_deg, c.options.free_step_s, control);
 }
 
@@ -107,7 +115,47 @@ HistoryEstimate estimate_history(const Case& c) {
   return e;
 }
 
+namespace {
+StepEstimate estimate_step_count(const Case& c);
+
+// The time of one evaluation of the beam's dynamics [s] at the case's start state, the median of
+// five timings of a batch (a batch lasts about a millisecond).
+double evaluation_time_s(const Case& c) {
+  const BeamModel& beam = *c.beam;
+  const auto ws = beam.make_workspace();
+  const int n = beam.modes();
+  const Eigen::VectorXd q = c.initial.q0.size() == n ? c.initial.q0 : Eigen::VectorXd::Zero(n);
+  const Eigen::VectorXd qd = c.initial.qd0.size() == n ? c.initial.qd0 : Eigen::VectorXd::Zero(n);
+  using clock = std::chrono::steady_clock;
+  const auto seconds = [](clock::duration d) { return std::chrono::duration<double>(d).count(); };
+  int batch = 1;
+  for (;;) {  // a batch long enough for the clock
+    const auto t0 = clock::now();
+    for (int i = 0; i < batch; ++i) beam.evaluate_dynamics(q, qd, *ws);
+    if (seconds(clock::now() - t0) > 1e-3 || batch >= (1 << 16)) break;
+    batch *= 4;
+  }
+  std::array<double, 5> times{};
+  for (double& t : times) {
+    const auto t0 = clock::now();
+    for (int i = 0; i < batch; ++i) beam.evaluate_dynamics(q, qd, *ws);
+    t = seconds(clock::now() - t0) / batch;
+  }
+  std::nth_element(times.begin(), times.begin() + 2, times.end());
+  return times[2];
+}
+}  // namespace
+
 StepEstimate estimate_steps(const Case& c) {
+  StepEstimate e = estimate_step_count(c);
+  e.evaluation_s = evaluation_time_s(c);
+  e.wall_s = e.steps * (c.options.scheme == Scheme::adaptive ? 7.0 : 6.0) * e.evaluation_s;
+  return e;
+}
+
+namespace {
+// The steps and the key that sets most of them (estimate_steps).
+StepEstimate estimate_step_count(const Case& c) {
   const PassOptions& o = c.options;
   const BeamModel& beam = *c.beam;
   const double omega = beam.hub_motion().omega;
@@ -147,6 +195,7 @@ StepEstimate estimate_steps(const Case& c) {
   }
   return e;
 }
+}  // namespace
 
 std::string size_text(double bytes) {
   static const char* const units[] = {"B", "kB", "MB", "GB", "TB", "PB", "EB"};
