@@ -37,18 +37,22 @@ bool wants_netcdf(const std::string& format) {
 }
 
 // Before any work: the Python that writes sweep.nc can (xarray and netCDF4 import). Its module
-// says what is missing on one line; exit 2 then, with nothing run.
-void check_netcdf_writer() {
-  const int code = run_python_module("rotbeam.netcdf", {"--check"}, kNetcdfWriter);
-  if (code == kInterrupted) throw ConfigError("--format netcdf: interrupted while checking the netCDF writer");
+// says what is missing on one line; exit 2 then, with nothing run. Returns false when a Ctrl-C
+// (SIGINT/SIGTERM) stopped the check: the caller says so in one line and exits 130.
+bool check_netcdf_writer() {
+  const int code = run_python_module("rotbeam.netcdf", {"--check"}, kNetcdfWriter, false);
+  if (code == kInterrupted) return false;
   if (code != 0) throw ConfigError("--format netcdf: sweep.nc cannot be written here (above: why); use --format csv");
+  return true;
 }
 
 // The hook that writes DIR/sweep.nc from the finished index (sweep.csv's text in `csv`), before
-// sweep.csv itself: rotbeam.netcdf through Python. `code` gets the module's exit code.
-BeforeIndex netcdf_writer(const std::string& dir, int& code) {
-  return [dir, &code](const std::filesystem::path& csv) {
-    code = run_python_module("rotbeam.netcdf", {dir, "--index", csv.string()}, kNetcdfWriter);
+// sweep.csv itself: rotbeam.netcdf through Python. `code` gets the module's exit code; a failure
+// is the module's one line, which ends with `then` (what the command does next); an interruption
+// is left to the caller to report.
+BeforeIndex netcdf_writer(const std::string& dir, const std::string& then, int& code) {
+  return [dir, then, &code](const std::filesystem::path& csv) {
+    code = run_python_module("rotbeam.netcdf", {dir, "--index", csv.string(), "--then", then}, kNetcdfWriter, false);
     if (code != 0) throw std::runtime_error("sweep.nc not written");
   };
 }
@@ -65,9 +69,13 @@ int run_sweep_command(const SweepCommandOptions& o) {
   options.dir = o.output_dir;
   options.jobs = o.jobs;
   if (!o.shard.empty()) options.shard = parse_shard(o.shard);
-  if (netcdf) check_netcdf_writer();
+  install_interrupt_handlers();  // from here on, a Ctrl-C is reported (it ended the process silently)
+  if (netcdf && (!check_netcdf_writer() || interrupt_token().stop_requested())) {
+    print_error("sweep interrupted before any case ran: nothing written");
+    return kInterrupted;
+  }
   int netcdf_code = 0;
-  if (netcdf) options.before_index = netcdf_writer(o.output_dir, netcdf_code);
+  if (netcdf) options.before_index = netcdf_writer(o.output_dir, "sweep.csv is written without it", netcdf_code);
   const bool terminal = !o.quiet && isatty(STDERR_FILENO), quiet = o.quiet;
   auto line = std::make_unique<LiveLine>(terminal);
   line->set([](double e) { return "cases under way, " + duration_text(e) + " elapsed"; });
@@ -134,7 +142,10 @@ int run_sweep_command(const SweepCommandOptions& o) {
                   "again to write sweep.nc");
       return kInterrupted;
     }
-    print_error("sweep.nc was not written (above: why); every case is done and sweep.csv written");
+    // The module said why in its line (or rotbeam, where the module did not run or crashed); a
+    // failure before it ran (the index's temporary copy) is said here.
+    if (netcdf_code == 0)
+      print_error("sweep.nc was not written (" + printable(r.index_error) + "); every case is done and sweep.csv written");
     return kRuntimeFailure;
   }
   return kSuccess;
@@ -152,9 +163,15 @@ int run_merge_command(const MergeCommandOptions& o) {
   MergeOptions options;
   for (const std::string& d : o.dirs) options.dirs.emplace_back(d);
   options.output = o.output_dir;
-  if (netcdf) check_netcdf_writer();
+  install_interrupt_handlers();
+  if (netcdf && (!check_netcdf_writer() || interrupt_token().stop_requested())) {
+    print_error("merge interrupted before anything was written");
+    return kInterrupted;
+  }
   int netcdf_code = 0;
-  if (netcdf) options.before_index = netcdf_writer(o.output_dir, netcdf_code);
+  if (netcdf)
+    options.before_index = netcdf_writer(o.output_dir, "merge: nothing written (" + path_text(o.output_dir) + " removed)",
+                                         netcdf_code);
   const bool terminal = !o.quiet && isatty(STDERR_FILENO);
   auto line = std::make_unique<LiveLine>(terminal);
   options.on_case = [&line](std::size_t done, std::size_t total) {
@@ -173,10 +190,7 @@ int run_merge_command(const MergeCommandOptions& o) {
       print_error("merge interrupted while writing sweep.nc: nothing written (" + path_text(o.output_dir) + " removed)");
       return kInterrupted;
     }
-    if (netcdf_code != 0) {
-      print_error("merge: sweep.nc could not be written (above: why); nothing written");
-      return kRuntimeFailure;
-    }
+    if (netcdf_code != 0) return kRuntimeFailure;  // the module said why and what is left, in one line
     throw;
   }
   line.reset();

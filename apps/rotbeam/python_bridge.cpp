@@ -65,7 +65,8 @@ std::string signal_name(int signal) {
 
 }  // namespace
 
-int run_python_module(const std::string& module, const std::vector<std::string>& args, const std::string& what) {
+int run_python_module(const std::string& module, const std::vector<std::string>& args, const std::string& what,
+                      bool report_interrupt) {
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   std::string python_path;
@@ -135,6 +136,7 @@ int run_python_module(const std::string& module, const std::vector<std::string>&
   if (at != std::string::npos) result = std::atoi(said.c_str() + at + 7);
   // An interrupt that arrived after the module finished its work changes nothing.
   if (g_forwarded != 0 && !(WIFEXITED(status) && WEXITSTATUS(status) == 0)) {
+    if (!report_interrupt) return kInterrupted;
     print_error(what == "the plotting module"
                     ? "interrupted while drawing: the files written so far are whole, the rest are missing"
                     : "interrupted while " + what + " ran: it wrote nothing under its file's name");

@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import errno
 import math
+import numbers
 import os
 import sys
 
@@ -80,6 +81,42 @@ class ConfigFileNotFoundError(ConfigError, FileNotFoundError):
 
     def __str__(self):
         return f"{_text_shown(self.filename) or _EMPTY_PATH}: no such configuration file"
+
+
+# The most threads (jobs) and Dask retries: the library counts them in a C int.
+_MOST = 2**31 - 1
+
+
+def _number_shown(v):
+    """A number for a message: as given, but a whole number of more than 40 digits (10**400) as
+    1.00000e+400, since its digits would fill the line and a float cannot hold it."""
+    if isinstance(v, numbers.Integral) and not isinstance(v, (bool, numpy.bool_)):
+        digits = str(abs(int(v)))
+        if len(digits) > 40:
+            return f"{'-' if v < 0 else ''}{digits[0]}.{digits[1:6]}e+{len(digits) - 1}"
+        return str(int(v))
+    return repr(v.item() if isinstance(v, numpy.generic) else v)
+
+
+def _is_number(v):
+    """Whether v is a real number, Python's or numpy's (numpy.float32, numpy.int64, …), not a boolean."""
+    return isinstance(v, numbers.Real) and not isinstance(v, (bool, numpy.bool_))
+
+
+def _whole(value, name, what, note=""):
+    """value as an int when it is a whole number (Python's or numpy's) in 0.._MOST: TypeError naming
+    `name` when it is not a whole number of `what`, ConfigError (a ValueError) `name = value: must
+    be in 0..2147483647` when it is one out of range (`note` follows both: " (0: all cores)")."""
+    if isinstance(value, (bool, numpy.bool_)) or not isinstance(value, numbers.Integral):
+        raise TypeError(f"{name} must be a whole number of {what}{note}, not {value!r}")
+    if not 0 <= int(value) <= _MOST:
+        raise ConfigError(f"{name} = {_number_shown(value)}: must be in 0..{_MOST}{note}")
+    return int(value)
+
+
+def _jobs(jobs):
+    """jobs as an int: a whole number of threads, 0 for all cores (TypeError, ConfigError otherwise)."""
+    return _whole(jobs, "jobs", "threads", " (0: all cores)")
 
 
 def _text_shown(s):
@@ -212,7 +249,7 @@ class Result:
         """None, or {kind, t_s, theta_deg, message} when the pass stopped on a diagnosed failure."""
         return self.summary.get("failure")
 
-    def to_xarray(self) -> "xarray.Dataset":
+    def to_xarray(self, every_row: bool = False) -> "xarray.Dataset":
         """The pass as an xarray Dataset (needs xarray): the history over the dimension `t` (the
         coordinate, in s), each other column of history.csv a variable with its `units` attribute
         ("N", "m s-1", "degree"; "1" for pure numbers); the events as a table over `event`
@@ -220,9 +257,15 @@ class Result:
         (`revolution_<column>`, runs over many revolutions) and the force bins over `bin`
         (`bin_<column>`). Attributes: `summary` and `configuration` (the resolved configuration) as
         JSON text, `failure` (JSON: null or the failure), `rotbeam_version`. `ds.to_netcdf(path)`
-        writes it (with netCDF4); `ds["normal_force_n"].to_pandas()` is a pandas Series over t."""
+        writes it (with netCDF4); `ds["normal_force_n"].to_pandas()` is a pandas Series over t.
+
+        `t` is unique and increasing, so `ds.sel(t=0.0123, method="nearest")` and
+        `ds.interp(t=times)` work: of an impact's two rows at one time (the states before and after
+        it) the Dataset keeps the one after, the state the pass goes on from; the impact is in the
+        events. every_row=True keeps every row of history.csv instead, over the dimension `row`
+        with `t` a coordinate along it (not an index)."""
         from ._xarray import result_dataset
-        return result_dataset(self, __version__)
+        return result_dataset(self, __version__, every_row)
 
     def __repr__(self):
         s = self.summary
@@ -298,8 +341,7 @@ def brush(config: ConfigLike = None, overrides: Overrides = None, jobs: int = 0)
     overrides as for run(). Returns a BrushResult (.summary, .workpiece, .profile, .filaments as
     numpy arrays); a filament's numerical failure is reported in BrushResult.failure (the sums hold
     the others). Ctrl-C stops the filaments under way and raises KeyboardInterrupt."""
-    if isinstance(jobs, bool) or not isinstance(jobs, int):
-        raise TypeError(f"jobs must be a whole number of threads (0: all cores), not {jobs!r}")
+    jobs = _jobs(jobs)
     path, sets = _arguments(config, overrides)
     summary, workpiece, profile, filaments = _core.brush(path, sets, jobs)
     return BrushResult(summary, _table_arrays(workpiece, "workpiece.csv"), _table_arrays(profile, "profile.csv"),
@@ -320,10 +362,14 @@ def static(tip_load_n: float, config: ConfigLike = None, overrides: Overrides = 
     beam.theory, at rest or spinning: a dict with tip_x_m and tip_y_m (the tip in the hub frame, x
     from the hub centre along the undeformed filament), q (modal coordinates, m), residual_n,
     iterations, load_steps. config and overrides as for run()."""
-    if isinstance(tip_load_n, bool) or not isinstance(tip_load_n, (int, float)):
+    if not _is_number(tip_load_n):
         raise ConfigError(f"tip_load_n = {tip_load_n!r}: give a number of newtons")
+    try:
+        load = float(tip_load_n)
+    except OverflowError:  # a whole number beyond the largest float (10**400)
+        raise ConfigError(f"tip_load_n = {_number_shown(tip_load_n)}: must be a finite number of newtons") from None
     path, sets = _arguments(config, overrides)
-    return _core.static(path, sets, float(tip_load_n))
+    return _core.static(path, sets, load)
 
 
 def _speeds(speeds_rpm: Any) -> list[float]:
@@ -331,13 +377,15 @@ def _speeds(speeds_rpm: Any) -> list[float]:
     if isinstance(speeds_rpm, (str, bytes)):
         raise ConfigError(f"speeds_rpm = {speeds_rpm!r}: give numbers (e.g. [550, 3000]), not a string")
     if isinstance(speeds_rpm, (int, float)) or (hasattr(speeds_rpm, "ndim") and speeds_rpm.ndim == 0):
-        return [float(speeds_rpm)]
+        speeds_rpm = [speeds_rpm]
     out = []
     for s in speeds_rpm:
         if isinstance(s, (str, bytes, bool)):
             raise ConfigError(f"speeds_rpm: {s!r} is not a speed in rpm")
         try:
             out.append(float(s))
+        except OverflowError:  # a whole number beyond the largest float (10**400): the library's range message
+            raise ConfigError(f"speeds_rpm: {_number_shown(s)} must be in [0, 1000000] rpm") from None
         except (TypeError, ValueError):
             raise ConfigError(f"speeds_rpm: {s!r} is not a speed in rpm") from None
     return out
@@ -388,6 +436,16 @@ def sweep(vary: Mapping[str, Any], config: ConfigLike = None, overrides: Overrid
     >>> ds["impacts"].sel({"hub.speed_rpm": 3000})
     """
     from . import _sweep
+    jobs = _jobs(jobs)  # checked with a client too, where the cluster's threads run the cases
+    retries = _whole(retries, "retries", "retries of a Dask task")
+    if client is not None and not all(callable(getattr(client, m, None)) for m in ("submit", "nthreads", "cancel")):
+        raise TypeError(f"client must be a dask.distributed.Client (e.g. Client({client!r}) for an address), "
+                        f"not {client!r}" if isinstance(client, str) else
+                        f"client must be a dask.distributed.Client, not {client!r}")
+    if not (progress is None or isinstance(progress, (bool, numpy.bool_)) or callable(progress)):
+        raise TypeError(f"progress must be a callable progress(finished, total), True, False or None, not {progress!r}")
+    if isinstance(progress, numpy.bool_):
+        progress = bool(progress)
     return _sweep.sweep(vary, config, overrides, jobs=jobs, client=client, retries=retries, progress=progress,
                         arguments=_arguments, toml_value=_toml_value)
 

@@ -39,6 +39,9 @@ _DIMENSIONLESS_KEYS = {"beam.modes", "beam.damping_ratio", "surface.depth_fracti
 # What a resumed case's message carries in sweep.csv that the result does not depend on.
 _RESUMED_NOTE = " (computed by an earlier run)"
 
+# The statuses `rotbeam sweep` writes in sweep.csv (sweep_status_name); `missing` is the Dataset's own.
+SWEEP_STATUSES = ("done", "resumed", "failed", "error", "interrupted")
+
 # The message of a case a shard's Dataset does not hold.
 _OTHER_SHARD = "another shard's case"
 
@@ -64,18 +67,31 @@ def _column(name: str, values: Any, dim: str, prefix: str = "") -> tuple[str, xr
     return prefix + name, xr.Variable((dim,), a, attrs)
 
 
-def result_dataset(result: Any, version: str) -> xr.Dataset:
+def result_dataset(result: Any, version: str, every_row: bool = False) -> xr.Dataset:
     """A pass's Dataset: the history over `t` (seconds; every other column of history.csv a variable
     with its units), the events over `event` (variables `event_<column>`), the revolutions over
     `revolution` (runs over many revolutions) and the force bins over `bin` (`bin_<column>`);
-    attributes: the summary and the resolved configuration as JSON, the version."""
+    attributes: the summary and the resolved configuration as JSON, the version.
+
+    An impact gives two rows at one time, the states before and after it: `t` keeps the one after
+    (the state the pass goes on from), so that it is a unique, increasing index that `sel` (with
+    `method="nearest"`) and `interp` can use; the impact itself is in the events (`event_vx_before_m_s`,
+    …). every_row=True keeps every row of history.csv, over the dimension `row` with `t` a coordinate
+    along it (not an index: the pairs share their t)."""
     h = result.history
     variables = {}
-    coords = {"t": xr.Variable(("t",), np.asarray(h["t_s"], dtype=float),
-                               {"units": "s", "long_name": "time from the start of the pass"})}
+    t = np.asarray(h["t_s"], dtype=float)
+    if every_row:
+        dim, keep = "row", slice(None)
+        long_name = "time from the start of the pass (an impact's states before and after it share one)"
+    else:
+        dim = "t"
+        keep = np.append(t[1:] != t[:-1], True) if len(t) else slice(None)  # the last row of each time
+        long_name = "time from the start of the pass (at an impact, the state after it)"
+    coords = {"t": xr.Variable((dim,), t[keep], {"units": "s", "long_name": long_name})}
     for name, values in h.items():
         if name != "t_s":
-            key, var = _column(name, values, "t")
+            key, var = _column(name, np.asarray(values)[keep], dim)
             variables[key] = var
     events = result.events
     if events:
@@ -180,7 +196,8 @@ class DamagedSweep(ValueError):
 def read_index(description: Mapping[str, Any], metrics: Sequence[tuple[str, str, str]], text: str,
                where: str) -> dict[int, tuple[str, list[float], str]]:
     """The rows of sweep.csv's text by 0-based case index: (status, metric values, message), after
-    checking its columns against the description and the metric table (DamagedSweep naming `where`)."""
+    checking its columns against the description and the metric table, and each status against
+    those rotbeam writes (DamagedSweep naming `where`, the line and the value)."""
     keys = [a["key"] for a in description["axes"]]
     names = [m[0] for m in metrics]
     expected = ["case", "folder", *keys, "status", *names, "message"]
@@ -189,7 +206,8 @@ def read_index(description: Mapping[str, Any], metrics: Sequence[tuple[str, str,
         if header != expected:
             raise DamagedSweep(f"{where}: its columns are not those of the sweep its sweep.json describes")
 
-    spec = Columns(tuple(expected), text=("folder", *keys, "status", "message"), ints=("case",), optional=tuple(names))
+    spec = Columns(tuple(expected), text=("folder", *keys, "message"), words={"status": SWEEP_STATUSES}, ints=("case",),
+                   optional=tuple(names))
     table = read_csv(where, spec, data=text, error=DamagedSweep, check_header=check_header)
     n = int(description["cases"])
     values = np.column_stack([table[m] for m in names]).tolist() if names else [[] for _ in table["case"]]

@@ -18,6 +18,7 @@ if __name__ == "__main__":
     announce_start()
 
 import argparse  # noqa: E402
+import errno  # noqa: E402
 import json  # noqa: E402
 import math  # noqa: E402
 import shutil  # noqa: E402
@@ -386,9 +387,12 @@ class _GifSink:
             self.frames.append(image.quantize(palette=self.frames[0], dither=Image.Dither.NONE))
 
     def finish(self):
-        self.frames[0].save(self.tmp, save_all=True, append_images=self.frames[1:], duration=self.duration_ms,
-                            loop=0, optimize=False)
-        put_in_place(self.tmp, self.target)
+        try:
+            self.frames[0].save(self.tmp, save_all=True, append_images=self.frames[1:], duration=self.duration_ms,
+                                loop=0, optimize=False)
+            put_in_place(self.tmp, self.target)
+        except OSError as e:  # a full disk, a folder that cannot be written: the user's file and why
+            raise OSError(e.errno, e.strerror or str(e), str(self.target)) from None
 
     def discard(self):
         self.frames = []
@@ -410,14 +414,31 @@ class _Mp4Sink:
             stdin=subprocess.PIPE, stderr=subprocess.PIPE)
 
     def add(self, rgba):
-        self.proc.stdin.write(np.ascontiguousarray(rgba).tobytes())
+        try:
+            self.proc.stdin.write(np.ascontiguousarray(rgba).tobytes())
+        except BrokenPipeError:  # ffmpeg stopped (a full disk, a folder it cannot write): why, from it
+            self._end()
+            raise OSError(errno.EIO, f"ffmpeg failed: {self._last_word()}", str(self.target)) from None
+
+    def _end(self):
+        """Closes ffmpeg's input and waits for it, keeping its messages: its exit code."""
+        try:
+            self.proc.stdin.close()
+        except BrokenPipeError:
+            pass
+        self.err = self.proc.stderr.read().decode(errors="replace").strip()
+        return self.proc.wait()
+
+    def _last_word(self):
+        return self.err.splitlines()[-1] if self.err else "no message"
 
     def finish(self):
-        self.proc.stdin.close()
-        err = self.proc.stderr.read().decode(errors="replace").strip()
-        if self.proc.wait() != 0:
-            raise OSError(f"ffmpeg failed writing {self.target}: {err.splitlines()[-1] if err else 'no message'}")
-        put_in_place(self.tmp, self.target)
+        if self._end() != 0:
+            raise OSError(errno.EIO, f"ffmpeg failed: {self._last_word()}", str(self.target))
+        try:
+            put_in_place(self.tmp, self.target)
+        except OSError as e:
+            raise OSError(e.errno, e.strerror or str(e), str(self.target)) from None
 
     def discard(self):
         if self.proc.poll() is None:

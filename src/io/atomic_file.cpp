@@ -18,7 +18,7 @@ void write_in_place(const std::filesystem::path& path, const std::string& conten
   if (!out) throw std::runtime_error(path.string() + ": cannot write (" + std::strerror(errno) + ")");
   out << contents;
   out.flush();
-  if (!out) throw std::runtime_error(path.string() + ": write failed");
+  if (!out) throw std::runtime_error(path.string() + ": cannot write (" + std::strerror(errno) + ")");
 }
 
 // True when following the links from `path` passes through /proc or /dev (/dev/stdout →
@@ -63,9 +63,10 @@ void write_file_atomically(const std::filesystem::path& path, const std::string&
     if (!out) throw std::runtime_error(path.string() + ": cannot write (" + std::generic_category().message(errno) + ")");
     out << contents;
     out.flush();
-    if (!out) {
+    if (!out) {  // a full disk: the user's name and the cause, not "write failed"
+      const int err = errno;
       std::remove(tmp.c_str());
-      throw std::runtime_error(path.string() + ": write failed");
+      throw std::runtime_error(path.string() + ": cannot write (" + std::strerror(err) + ")");
     }
   }
   fs::rename(tmp, real, ec);

@@ -15,6 +15,8 @@
 #include <span>
 #include <charconv>
 #include <cmath>
+#include <cerrno>
+#include <cstring>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -137,9 +139,10 @@ void write_temporary(const std::filesystem::path& path, const std::string& text)
   out << text;
   out.flush();
   if (!out) {
+    const int err = errno;
     std::error_code ec;
     std::filesystem::remove(path, ec);
-    throw std::runtime_error(path.string() + ": cannot write");
+    throw std::runtime_error(path.string() + ": cannot write (" + std::strerror(err) + ")");
   }
 }
 

@@ -7,6 +7,9 @@
 #include "rotbeam/folder_lock.hpp"
 #include "rotbeam/pass_output.hpp"
 
+#include <cerrno>
+#include <cstring>
+#include <fcntl.h>
 #include <fstream>
 #include <map>
 #include <set>
@@ -142,14 +145,55 @@ ShardFolder read_shard_folder(const fs::path& dir) {
   return f;
 }
 
+// Copies the file `from` to `to` (replaced if there) with read and write, so that a failure says
+// its cause: std::filesystem::copy_file reported a disk that filled during the copy as
+// "Input/output error". A partial copy is removed. Throws std::runtime_error naming `to`.
+void copy_file_contents(const fs::path& from, const fs::path& to) {
+  const auto fail = [&](const std::string& what, int err) {
+    throw std::runtime_error(shown(to) + ": cannot copy " + shown(from) + " (" + what + std::strerror(err) + ")");
+  };
+  const int in = ::open(from.c_str(), O_RDONLY | O_CLOEXEC);
+  if (in < 0) fail("reading it: ", errno);
+  const int out = ::open(to.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (out < 0) {
+    const int err = errno;
+    ::close(in);
+    fail("", err);
+  }
+  int err = 0;
+  bool reading = false;
+  char buf[1 << 16];
+  for (;;) {
+    const ssize_t got = ::read(in, buf, sizeof buf);
+    if (got < 0 && errno == EINTR) continue;
+    if (got < 0) {
+      err = errno, reading = true;
+      break;
+    }
+    if (got == 0) break;
+    for (ssize_t put = 0; put < got && err == 0;) {
+      const ssize_t n = ::write(out, buf + put, static_cast<std::size_t>(got - put));
+      if (n < 0 && errno != EINTR) err = errno;
+      if (n > 0) put += n;
+    }
+    if (err != 0) break;
+  }
+  ::close(in);
+  if (::close(out) != 0 && err == 0) err = errno;
+  if (err != 0) {
+    std::error_code ec;
+    fs::remove(to, ec);
+    fail(reading ? "reading it: " : "", err);
+  }
+}
+
 // Hard-links `from` to `to`, or copies it where the file system cannot link (another device, no
 // permission). Returns true for a link.
 bool link_or_copy(const fs::path& from, const fs::path& to) {
   std::error_code ec;
   fs::create_hard_link(from, to, ec);
   if (!ec) return true;
-  fs::copy_file(from, to, fs::copy_options::overwrite_existing, ec);
-  if (ec) throw std::runtime_error(shown(to) + ": cannot copy " + shown(from) + " (" + ec.message() + ")");
+  copy_file_contents(from, to);
   return false;
 }
 
@@ -395,7 +439,10 @@ MergeReport merge_sweeps(const MergeOptions& options) {
       std::ofstream t(tmp, std::ios::binary | std::ios::trunc);
       t << index;
       t.flush();
-      if (!t) throw std::runtime_error(shown(tmp) + ": cannot write");
+      if (!t) {  // the index for sweep.nc, on a full disk: sweep.nc names it, with the cause
+        const int err = errno;
+        throw std::runtime_error(shown(options.output / "sweep.nc") + ": cannot write (its index: " + std::strerror(err) + ")");
+      }
     }
     options.before_index(tmp);
     std::error_code ec;

@@ -29,9 +29,11 @@ def test_a_pass_as_a_dataset_over_t_with_units_and_its_events():
     r = rotbeam.run(overrides={"output.interval_s": 1e-4})
     ds = r.to_xarray()
     assert list(ds["normal_force_n"].dims) == ["t"]
-    np.testing.assert_array_equal(ds["t"].values, r.history["t_s"])
-    np.testing.assert_array_equal(ds["normal_force_n"].values, r.history["normal_force_n"])
-    assert list(ds["phase"].values) == list(r.history["phase"])
+    t = r.history["t_s"]
+    kept = np.append(t[1:] != t[:-1], True)  # of an impact's two rows at one t, the one after it
+    np.testing.assert_array_equal(ds["t"].values, t[kept])
+    np.testing.assert_array_equal(ds["normal_force_n"].values, r.history["normal_force_n"][kept])
+    assert list(ds["phase"].values) == list(r.history["phase"][kept])
     units = {name: ds[name].attrs.get("units") for name in ds.variables}
     assert units["t"] == "s" and units["normal_force_n"] == "N" and units["vx_m_s"] == "m s-1"
     assert units["q1_m"] == "m" and units["hub_torque_n_m"] == "N m" and units["jacobi_j"] == "J"
