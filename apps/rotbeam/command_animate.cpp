@@ -4,6 +4,8 @@
 #include "common.hpp"
 #include "python_bridge.hpp"
 
+#include "rotbeam/pass_output.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -109,7 +111,19 @@ Command add_animate_command(CLI::App& app) {
       throw ConfigError(path_text(opts->folder) + ": " + (ec ? ec.message() : std::string("no such folder")));
     if (!fs::exists(fs::path(opts->folder) / "summary.json"))
       throw ConfigError(path_text(opts->folder) + ": not a run folder (no summary.json)");
+    // A brush's folder holds sums over its filaments, no filament's history to animate (it named a
+    // summary entry the brush does not write).
+    if (brush_output_folder(opts->folder))
+      throw ConfigError(path_text(opts->folder) + ": holds a brush (rotbeam brush), not a run: animate draws one "
+                        "filament's run; draw the brush with `rotbeam plot " + opts->folder +
+                        "`, or animate one of its filaments with `rotbeam run` (without the [brush] keys)");
     if (!opts->output.empty()) check_output_file("-o", opts->output, {".gif", ".mp4"});
+    else
+      try {  // the default files: a folder under their names stopped the animation once drawn
+        refuse_folders_under_file_names(opts->folder, {"animation.gif", "animation.mp4"}, "animate");
+      } catch (const std::runtime_error& e) {
+        throw ConfigError(e.what());
+      }
     const FolderLock lock = drawing_lock(opts->folder);  // no run replaces the files while they are drawn
     std::vector<std::string> args = {opts->folder};
     if (!opts->output.empty()) args.insert(args.end(), {"-o", opts->output});

@@ -7,6 +7,7 @@
 #include "rotbeam/brush_output.hpp"
 
 #include <cmath>
+#include <toml++/toml.h>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -24,11 +25,16 @@ struct BrushCommandOptions {
   bool quiet = false;
 };
 
+// "1 filament", "24 filaments".
+std::string counted(long long n, const std::string& word) {
+  return std::to_string(n) + " " + word + (n == 1 ? "" : "s");
+}
+
 void print_summary(const Config& config, const BrushResult& r, const std::string& dir) {
   const BrushSummary& s = r.summary;
   const BrushSettings& b = *config.brush;
-  std::cout << "Brush: " << s.filaments << " filaments (" << b.filaments << " around × " << b.rows << " rows, "
-            << s.distinct_filaments << " distinct), " << number_text(config.beam.speed_rpm) << " rpm, "
+  std::cout << "Brush: " << counted(s.filaments, "filament") << " (" << b.filaments << " around × "
+            << counted(b.rows, "row") << ", " << s.distinct_filaments << " distinct), " << number_text(config.beam.speed_rpm) << " rpm, "
             << surface_text(config) << ", μ = " << config.contact.friction.mu << ", "
             << modes_text(config) << "\n";
   std::cout << "  filaments             " << s.steady << " steady, " << s.not_steady << " not steady, " << s.failed
@@ -71,8 +77,21 @@ void print_summary(const Config& config, const BrushResult& r, const std::string
 int run_brush_command(const BrushCommandOptions& o) {
   if (o.jobs < 0) throw ConfigError("--jobs " + std::to_string(o.jobs) + ": must be >= 0");
   const Config config = o.case_options.load();
-  if (!config.brush)
+  if (!config.brush) {
+    // A [brush] table without keys is there, but describes no brush: said as such (it was reported
+    // as no [brush] section).
+    bool empty_table = false;
+    if (o.case_options.config_path) try {
+        const toml::table root = toml::parse_file(*o.case_options.config_path);
+        empty_table = root.contains("brush") && root["brush"].is_table();
+      } catch (const std::exception&) {
+        empty_table = false;  // read once already by load(): only the message's wording is at stake
+      }
+    if (empty_table)
+      throw ConfigError("brush: the [brush] section of " + path_text(*o.case_options.config_path) +
+                        " holds no keys (give brush.filaments, e.g. filaments = 24 in it or --set brush.filaments=24)");
     throw ConfigError("brush: the configuration has no [brush] section (give brush.filaments, e.g. --set brush.filaments=24)");
+  }
   if (o.output_dir.empty()) throw ConfigError("-o DIR: an output folder is required");
   // Every drawn filament is validated before the folder is made: bad input leaves nothing behind.
   brush_filament_configs(config, brush_filaments(config));
@@ -107,13 +126,13 @@ int run_brush_command(const BrushCommandOptions& o) {
   if (r.summary.failure) {
     const NumericalFailure& f = *r.summary.failure;
     if (f.kind == FailureKind::interrupted) {
-      print_error("interrupted: " + std::to_string(r.summary.failed) + " filaments not finished; the files in " +
+      print_error("interrupted: " + counted(r.summary.failed, "filament") + " not finished; the files in " +
                   o.output_dir + " hold the others");
       return kInterrupted;
     }
     print_error("filament " + std::to_string(r.summary.failed_filament + 1) + " failed (" + failure_name(f.kind) +
                 ") at t = " + number_text(f.t) + " s, θ = " + fixed(f.theta * 180.0 / M_PI, 4) + " deg: " + f.message +
-                "; the sums in " + o.output_dir + " leave out " + std::to_string(r.summary.failed) + " filaments");
+                "; the sums in " + o.output_dir + " leave out " + counted(r.summary.failed, "filament"));
     return exit_code_for_failure(f.kind);
   }
   if (!r.summary.error.empty()) {

@@ -36,6 +36,9 @@ std::vector<T> parse_list(const std::string& text, const std::string& option, in
       if (v != std::floor(v) || v > max_modes)
         throw ConfigError(option + " " + text + ": '" + item + "' must be a whole number of modes up to " + std::to_string(max_modes));
     }
+    // A rung given twice (1e-8,1e-8 or 1e-8,1.0e-8) is the same run twice, one row compared with itself.
+    if (std::find(out.begin(), out.end(), static_cast<T>(v)) != out.end())
+      throw ConfigError(option + " " + text + ": '" + item + "' is given twice (give each value once)");
     out.push_back(static_cast<T>(v));
   }
   if (out.empty()) throw ConfigError(option + ": give a comma-separated list");

@@ -3,6 +3,8 @@
 #include "common.hpp"
 #include "python_bridge.hpp"
 
+#include "rotbeam/pass_output.hpp"
+
 #include <filesystem>
 
 namespace rotbeam::cli {
@@ -28,6 +30,28 @@ Command add_plot_command(CLI::App& app) {
       throw ConfigError(path_text(opts->folder) + ": " + (ec ? ec.message() : std::string("no such folder")));
     if (!fs::exists(dir / "summary.json") && !fs::exists(dir / "sweep.csv"))
       throw ConfigError(opts->folder + ": neither a run folder (summary.json) nor a sweep folder (sweep.csv)");
+    // A folder under a picture's name would stop the drawing after the pictures before it: refused
+    // before any is drawn, as run and brush refuse one under their files' names.
+    const fs::path out = opts->output.empty() ? dir : fs::path(opts->output);
+    const std::vector<std::string> run_pictures = {"normal_force_vs_y.png", "tip_path.png", "modal_coordinates.png",
+                                                   "energy.png", "impacts.png"};
+    const std::vector<std::string> brush_pictures = {"brush_force.png", "brush_profile.png", "brush_filaments.png"};
+    try {
+      if (fs::exists(dir / "summary.json")) {
+        refuse_folders_under_file_names(out, brush_output_folder(dir) ? brush_pictures : run_pictures, "plot");
+      } else {
+        refuse_folders_under_file_names(out, {"sweep_metrics.png", "sweep_normal_force_vs_y.png", "rub_map.png",
+                                              "brush_map.png"}, "plot");
+        if (opts->cases)
+          for (const fs::directory_entry& e : fs::directory_iterator(dir, ec))
+            if (e.is_directory(ec) && e.path().filename().string().rfind("case-", 0) == 0) {
+              refuse_folders_under_file_names(out / e.path().filename(), run_pictures, "plot");
+              refuse_folders_under_file_names(out / e.path().filename(), brush_pictures, "plot");
+            }
+      }
+    } catch (const std::runtime_error& e) {
+      throw ConfigError(e.what());
+    }
     const FolderLock lock = drawing_lock(dir);  // no run replaces the files while they are drawn
     std::vector<std::string> args = {opts->folder};
     if (!opts->output.empty()) args.insert(args.end(), {"-o", opts->output});

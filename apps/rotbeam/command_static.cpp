@@ -37,7 +37,7 @@ int run_static(const StaticOptions& o) {
   }
   const double L = config.beam.length_m;
   const double load_parameter = o.tip_load_n * L * L / bending_stiffness(config.beam);
-  const std::vector<std::string> warnings = static_warnings(*beam, s, o.tip_load_n, config.simulation.deflection_warning_ratio);
+  const std::vector<std::string> warnings = static_warnings(*beam, s, o.tip_load_n, config.simulation.deflection_warning_ratio, load_parameter);
   if (o.json) {
     nlohmann::json j = {{"theory", beam_theory_name(config.beam.theory)},
                         {"modes", config.beam.modes},
@@ -61,7 +61,7 @@ int run_static(const StaticOptions& o) {
             << given_text(config.beam.speed_rpm) << " rpm"
             << (config.beam.centrifugal ? "" : " (centrifugal terms off)") << ", in the hub frame\n"
             << "  tip load         P       = " << given_text(o.tip_load_n) << " N normal to the undeformed filament"
-            << " (PL²/EI = " << fixed(load_parameter, 4) << ")\n"
+            << " (PL²/EI = " << number_text(load_parameter) << ")\n"
             << "  tip position     x_t     = " << fixed(s.tip_x, 9) << " m from the hub centre (undeformed "
             << fixed(beam->tip_radius(), 9) << " m)\n"
             << "                   y_t     = " << fixed(s.tip_y, 9) << " m\n"

@@ -199,7 +199,10 @@ int run_merge_command(const MergeCommandOptions& o) {
     return kInterrupted;
   }
   const SweepReport& s = r.sweep;
-  std::cout << "merged " << r.shards << (r.shards == 1 ? " shard: " : " shards: ") << s.cases.size()
+  std::cout << "merged " << r.shards << (r.shards == 1 ? " shard" : " shards")
+            << (r.shards < r.shard_count ? " of " + std::to_string(r.shard_count) + " (the others hold no case of the grid)"
+                                         : std::string())
+            << ": " << s.cases.size()
             << (s.cases.size() == 1 ? " case (" : " cases (") << s.failed << " stopped on a diagnosed failure)\n";
   std::cout << "wrote " << path_text((std::filesystem::path(o.output_dir) / "sweep.csv").string())
             << (netcdf ? ", " + path_text((std::filesystem::path(o.output_dir) / "sweep.nc").string()) : std::string())

@@ -12,7 +12,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 namespace rotbeam::cli {
@@ -286,6 +288,12 @@ void check_output_file(const std::string& option, const std::string& path, const
     list += (list.empty() ? "" : ", ") + s;
   }
   throw ConfigError(option + " " + path + ": must end in " + list);
+}
+
+bool brush_output_folder(const std::string& dir) {
+  std::ifstream in(std::filesystem::path(dir) / "summary.json");
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  return j.is_object() && j.contains("kind") && j["kind"] == "brush";
 }
 
 FolderLock drawing_lock(const std::string& dir) {

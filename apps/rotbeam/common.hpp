@@ -149,6 +149,9 @@ std::string modes_text(const Config& config);
 /// option and the path.
 void check_output_file(const std::string& option, const std::string& path, const std::vector<std::string>& suffixes);
 
+/// Whether the folder's summary.json is a brush's ("kind": "brush", written by `rotbeam brush`).
+bool brush_output_folder(const std::string& dir);
+
 /// The lock `plot` and `animate` hold on the folder they draw (FolderLock::Use::drawing): a run into
 /// it meanwhile is refused instead of leaving the pictures of the older run beside its files.
 /// Throws ConfigError naming the folder when a run is writing there.

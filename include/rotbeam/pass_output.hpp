@@ -13,6 +13,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 namespace rotbeam {
 
@@ -43,6 +44,13 @@ nlohmann::json summary_json(const PassResult& result, const Config& config, cons
 /// Creates `dir` if needed and checks that files can be created in it (before a long run).
 /// Throws std::runtime_error naming the path when it cannot.
 void prepare_output_folder(const std::filesystem::path& dir);
+
+/// Refuses, before any work, a folder in `dir` under the name of a file that `writer` ("the run",
+/// "the sweep") writes there: an empty one was removed and replaced without a word, a full one
+/// stopped the work at its end. Throws std::runtime_error "DIR/NAME: is a folder, where WRITER
+/// writes its file NAME" for the first such name.
+void refuse_folders_under_file_names(const std::filesystem::path& dir, const std::vector<std::string>& names,
+                                     const std::string& writer);
 
 /// Streams a pass into `dir`: history.csv and events.csv are written into temporaries beside their
 /// final names as the rows and events arrive, and commit() renames them into place and then writes

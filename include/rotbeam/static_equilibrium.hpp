@@ -13,6 +13,7 @@
 #include "rotbeam/stop_token.hpp"
 
 #include <Eigen/Core>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -40,8 +41,11 @@ StaticEquilibrium static_equilibrium(const BeamModel& beam, double tip_load_n, c
 /// more sharply near its clamp than the modes resolve (PL²/EI above n²); the tip farther than L from
 /// its clamp (the foreshortening model outside its geometry), or, for a model that is not
 /// geometrically exact, |y_t|/L above `deflection_warning_ratio` (simulation.deflection_warning_ratio).
-/// One line each.
+/// One line each. `load_parameter`: PL²/EI, from the filament's EI (bending_stiffness), the value a
+/// caller prints beside the warnings; NaN: estimated as 3P/s.load_scale (the modes' linear load for
+/// a deflection of L, which spin and the mode count move away from 3EI/L²).
 std::vector<std::string> static_warnings(const BeamModel& beam, const StaticEquilibrium& s, double tip_load_n,
-                                         double deflection_warning_ratio);
+                                         double deflection_warning_ratio,
+                                         double load_parameter = std::numeric_limits<double>::quiet_NaN());
 
 }  // namespace rotbeam

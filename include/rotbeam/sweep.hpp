@@ -173,7 +173,8 @@ struct MergeOptions {
 
 struct MergeReport {
   SweepReport sweep;  // the whole grid, in case order, with the statuses the shards recorded
-  int shards = 0;
+  int shards = 0;       // the folders merged that hold cases of the grid
+  int shard_count = 0;  // N of the shards I/N (shards beyond the grid's cases hold none)
   std::size_t linked_files = 0, copied_files = 0;  // hard links where the file system allows, else copies
   bool interrupted = false;  // stopped by `stop`: the output folder the merge made is removed
 };

@@ -31,7 +31,14 @@ from ._figures import case_title, put_in_place, remove_stale_temporaries, tempor
 
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from PIL import Image  # noqa: E402
+
+from . import _interrupt  # noqa: E402
+
+try:
+    from PIL import Image
+except ImportError as missing:  # one line naming what to install, not a traceback
+    raise _interrupt.missing_package(
+        f"an animation needs Pillow for {sys.executable} (Debian: apt-get install python3-pil): {missing}") from None
 
 from ._csv import DamagedFolder, read_csv  # noqa: E402
 from ._interrupt import error, file_error, wrote  # noqa: E402
@@ -50,10 +57,17 @@ MAX_FRAMES = 2000
 
 
 def _shape_overrides(summary):
-    """The beam and hub keys of the run's resolved configuration, as `--set` pairs."""
+    """The keys of the run's resolved configuration that make its filament, as `--set` pairs: the beam
+    and hub sections, the rotation switches, and the contact law, which some beam keys belong to
+    (beam.poisson is the compliant law's: without contact.model = "hertz" it is refused)."""
     from . import _arguments
     c = summary["config"]
-    return _arguments({"beam": c["beam"], "hub": c["hub"]}, None)[1]
+    sections = {"beam": c["beam"], "hub": c["hub"]}
+    if isinstance(c.get("model"), dict):
+        sections["model"] = c["model"]
+    if isinstance(c.get("contact"), dict) and "model" in c["contact"]:
+        sections["contact"] = {"model": c["contact"]["model"]}
+    return _arguments(sections, None)[1]
 
 
 def with_rigid_approach(history, summary, step_deg=0.05):
@@ -160,6 +174,19 @@ def filament_frames(folder, rows=None, points=41, magnify=1.0, history=None, sum
     return {"x": x, "y": y}
 
 
+def _refuse_brush(folder):
+    """A brush's folder holds sums over its filaments, no filament's history: said as such (it named
+    a summary entry the brush does not write)."""
+    try:
+        kind = json.loads((folder / "summary.json").read_text()).get("kind")
+    except (OSError, ValueError, AttributeError):
+        return  # read_run says what is wrong with it
+    if kind == "brush":
+        raise ValueError(f"{folder}: holds a brush (rotbeam brush), not a run: animate draws one filament's run; "
+                         f"draw the brush with `rotbeam plot {folder}`, or animate one of its filaments with "
+                         "`rotbeam run` (without the [brush] keys)")
+
+
 def _tty_progress(done, total):
     if sys.stderr.isatty():
         print(f"\r  frame {done + 1} of {total}", end="", file=sys.stderr, flush=True)
@@ -178,6 +205,7 @@ def animate(folder, output=None, frames=None, frames_per_degree=None, window=Non
     told when the history holds fewer distinct states than frames asked for (each frame is a
     recorded state, never an interpolation)."""
     folder = Path(folder)
+    _refuse_brush(folder)
     history, events, summary = read_run(folder)  # every file checked before anything is drawn
     if not len(history.get("t_s", [])):
         raise DamagedFolder(f"{folder / 'history.csv'}: no rows to animate")

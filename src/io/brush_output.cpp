@@ -144,11 +144,12 @@ BrushFiles::BrushFiles(const std::filesystem::path& dir) : dir_(dir) {
     throw std::runtime_error(dir.string() + ": holds a reproduction (manifest.json, report.md), not a brush; give another folder");
   prepare_output_folder(dir);
   lock_ = std::make_unique<FolderLock>(dir);
-  for (const char* name : kFiles)
-    if (fs::is_directory(fs::symlink_status(dir / name, ec))) {
-      lock_.reset();
-      throw std::runtime_error((dir / name).string() + ": is a folder, where the brush writes its file " + name);
-    }
+  try {
+    refuse_folders_under_file_names(dir, {std::begin(kFiles), std::end(kFiles)}, "the brush");
+  } catch (const std::runtime_error&) {
+    lock_.reset();
+    throw;
+  }
   // An older brush's summary (and pictures) go now: until commit() the folder is not complete.
   const bool older = fs::is_regular_file(fs::symlink_status(dir / "summary.json", ec));
   ec.clear();
@@ -158,7 +159,8 @@ BrushFiles::BrushFiles(const std::filesystem::path& dir) : dir_(dir) {
     throw std::runtime_error((dir / "summary.json").string() + ": cannot remove the older summary (" + ec.message() + ")");
   }
   if (older)
-    for (const char* drawn : kPictures) fs::remove(dir / drawn, ec);
+    for (const char* drawn : kPictures)  // the pictures, not a folder of the user's under their name
+      if (fs::is_regular_file(fs::symlink_status(dir / drawn, ec))) fs::remove(dir / drawn, ec);
 }
 
 BrushFiles::~BrushFiles() = default;

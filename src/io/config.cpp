@@ -12,6 +12,7 @@
 #include <cctype>
 #include <cerrno>
 #include <charconv>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -19,6 +20,7 @@
 #include <functional>
 #include <iterator>
 #include <limits>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <system_error>
@@ -107,8 +109,14 @@ bool wide_integer(const std::string& text) {
   return std::from_chars(digits.data(), digits.data() + digits.size(), v).ec == std::errc::result_out_of_range;
 }
 
+// Values given as integers beyond TOML's 64-bit signed range that a key takes exactly (brush.seed
+// takes every unsigned 64-bit seed): TOML cannot hold them, so they are kept here by key, beside the
+// table (which holds a placeholder under the key).
+using WideIntegers = std::map<std::string, std::uint64_t>;
+
 // Sets `key` to the TOML value `text` (a bare word is a string). `what` names the override in errors.
-void apply_value(toml::table& root, const std::string& key, const std::string& text, const std::string& what) {
+void apply_value(toml::table& root, const std::string& key, const std::string& text, const std::string& what,
+                 WideIntegers& wide) {
   const auto dot = key.find('.');
   if (dot == std::string::npos || dot == 0 || dot + 1 == key.size() || key.find('.', dot + 1) != std::string::npos)
     throw ConfigError(what + ": the key must be section.key");
@@ -132,15 +140,32 @@ void apply_value(toml::table& root, const std::string& key, const std::string& t
   if (!root.contains(section)) root.insert(section, toml::table{});
   toml::table* sec = root[section].as_table();
   if (!sec) refuse(section, render(*root.get(section)), "unknown top-level key; expected a [section]" + suggestion(section));
+  wide.erase(key);  // a later value of the key replaces an earlier one
   if (!parsed_ok && wide_integer(text)) {
     // An integer beyond the 64 bits TOML reads ("2**80" from Python) is a number, not a word: the
-    // key's own check is asked with the nearest 64-bit integer and its answer given with the value
-    // as written (it was "beam.modes = \"1208925819614629174706176\": must be an integer"). A key
-    // that takes a number that large gets it as a float.
-    const Value nearest = text[0] == '-' ? std::numeric_limits<int64_t>::min() : std::numeric_limits<int64_t>::max();
-    if (const auto why = refusal(*known, nearest)) throw ConfigError(printable(key) + " = " + text + ": " + *why);
+    // key's own check is asked with the nearest 64-bit integer (unsigned, where it fits: every
+    // seed of mt19937_64) and its answer given with the value as written (it was
+    // "beam.modes = \"1208925819614629174706176\": must be an integer"). A key that takes that
+    // integer gets it exactly; one that takes a number that large, as a float.
     std::string digits;
-    std::copy_if(text.begin(), text.end(), std::back_inserter(digits), [](char c) { return c != '_'; });
+    std::copy_if(text.begin(), text.end(), std::back_inserter(digits), [](char c) { return c != '_' && c != '+'; });
+    std::uint64_t u = 0;
+    const bool fits = digits[0] != '-' &&
+                      std::from_chars(digits.data(), digits.data() + digits.size(), u).ec == std::errc();
+    const Value nearest = digits[0] == '-' ? Value(std::numeric_limits<int64_t>::min())
+                                           : Value(fits ? u : std::numeric_limits<std::uint64_t>::max());
+    if (const auto why = refusal(*known, nearest)) throw ConfigError(printable(key) + " = " + text + ": " + *why);
+    const bool takes_number = std::any_of(known->check.forms.begin(), known->check.forms.end(),
+                                          [](const Form& f) { return f.kind == Form::Kind::number; });
+    if (!takes_number) {
+      if (!fits)  // beyond every unsigned 64-bit integer
+        throw ConfigError(printable(key) + " = " + text + ": " +
+                          (known->check.out_of_range.empty() ? std::string("must be a 64-bit integer")
+                                                             : known->check.out_of_range));
+      sec->insert_or_assign(name, int64_t{0});
+      wide[key] = u;
+      return;
+    }
     sec->insert_or_assign(name, std::strtod(digits.c_str(), nullptr));
     return;
   }
@@ -151,11 +176,12 @@ void apply_value(toml::table& root, const std::string& key, const std::string& t
 }
 
 // Applies one `--set section.key=value`.
-void apply_override(toml::table& root, const std::string& assignment) {
+void apply_override(toml::table& root, const std::string& assignment, WideIntegers& wide) {
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || trimmed(assignment.substr(0, eq)).empty())
     throw ConfigError("--set " + printable(assignment) + ": expected section.key=value");
-  apply_value(root, trimmed(assignment.substr(0, eq)), trimmed(assignment.substr(eq + 1)), "--set " + printable(assignment));
+  apply_value(root, trimmed(assignment.substr(0, eq)), trimmed(assignment.substr(eq + 1)), "--set " + printable(assignment),
+              wide);
 }
 
 // A key's value as given and as a message shows it.
@@ -182,7 +208,7 @@ Config check_config(Config start, const std::function<std::optional<GivenValue>(
 }
 
 // The configuration `root` describes: its names known, its values checked (check_config).
-Config validate(const toml::table& root) {
+Config validate(const toml::table& root, const WideIntegers& wide = {}) {
   // Unknown names first.
   for (auto&& [section_key, section_node] : root) {
     const std::string section(section_key.str());
@@ -197,18 +223,21 @@ Config validate(const toml::table& root) {
   return check_config(Config{}, [&](const Key& k) -> std::optional<GivenValue> {
     const toml::node* node = root.at_path(k.name).node();
     if (!node) return std::nullopt;
+    if (const auto w = wide.find(k.name); w != wide.end()) return GivenValue{Value(w->second), std::to_string(w->second)};
     return GivenValue{value_of(*node), render(*node)};
   });
 }
 
 Config resolve(toml::table& root, const std::vector<std::string>& overrides) {
-  for (const std::string& o : overrides) apply_override(root, o);
-  return validate(root);
+  WideIntegers wide;
+  for (const std::string& o : overrides) apply_override(root, o, wide);
+  return validate(root, wide);
 }
 
 Config resolve(toml::table& root, const std::vector<std::pair<std::string, std::string>>& values) {
-  for (const auto& [key, text] : values) apply_value(root, key, text, printable(key) + " = " + printable(text));
-  return validate(root);
+  WideIntegers wide;
+  for (const auto& [key, text] : values) apply_value(root, key, text, printable(key) + " = " + printable(text), wide);
+  return validate(root, wide);
 }
 
 toml::table read_file(const std::optional<std::string>& path) {

@@ -153,9 +153,6 @@ void check_run(Config& c, const GivenValues& given) {
   if (sim.until_steady && sim.end_when_clear)
     refuse("simulation.end_when_clear", given.at("simulation.end_when_clear"),
            "ends one pass early; with simulation.until_steady = true every revolution's free flight is the point");
-  if (sim.steady_method == SteadyMethod::shooting && !sim.until_steady)
-    refuse("simulation.steady_method", given.at("simulation.steady_method"),
-           "shooting searches for the steady state: it needs simulation.until_steady = true");
   if (c.brush && c.surface.shape == SurfaceShape::casing)
     refuse("surface.shape", given.at("surface.shape"),
            "a brush works a plane or a cylinder in this version (its filaments' scatter moves their depth, which a "
@@ -172,6 +169,10 @@ void check_run(Config& c, const GivenValues& given) {
              "brush.filaments × brush.rows = " + std::to_string(total) + " filaments, more than " +
                  std::to_string(kMaxBrushFilaments));
   }
+  // After the brush's until_steady is set: a brush's filaments search with either method.
+  if (sim.steady_method == SteadyMethod::shooting && !sim.until_steady)
+    refuse("simulation.steady_method", given.at("simulation.steady_method"),
+           "shooting searches for the steady state: it needs simulation.until_steady = true");
   // The steady-state search's own keys, given a value other than their default, would change
   // nothing without it (as shooting, above): refused. Their defaults, as in a file that lists every
   // key, are accepted.

@@ -324,8 +324,9 @@ std::vector<Key> make_table() {
   t.push_back(plain("brush.diameter_scatter", "", one(closed(0, 0.3)),
                     "a brush: the relative standard deviation of each filament's diameter",
                     [](auto& c) -> auto& { return brush_of(c).diameter_scatter; }, brush));
-  const std::string whole = "must be a whole number >= 0";
-  t.push_back(plain("brush.seed", "", Check{{integers(0, std::ldexp(1.0, 63))}, whole, whole, ""}, "a brush: the scatter's random stream",
+  // Every seed of mt19937_64, 0 … 2^64 − 1 (read exactly: config.cpp).
+  const std::string whole = "must be a whole number in 0..18446744073709551615";
+  t.push_back(plain("brush.seed", "", Check{{integers(0, std::ldexp(1.0, 64))}, whole, whole, ""}, "a brush: the scatter's random stream",
                     [](auto& c) -> auto& { return brush_of(c).seed; }, brush));
   t.push_back(plain("compat.thesis_forces", "", one(boolean()),
                     "report the normal force as |lambda| |grad C| and friction as mu |lambda| |grad C|, as the thesis did",
@@ -344,7 +345,11 @@ std::string range_text(const Form& f) {
          (std::isinf(f.hi) ? std::string("inf") : format_number(f.hi)) + (f.hi_open ? ")" : "]");
 }
 
-std::string integer_text(double v) { return std::to_string(static_cast<std::int64_t>(v)); }
+std::string integer_text(double v) {
+  if (v >= 18446744073709551615.0) return std::to_string(std::numeric_limits<std::uint64_t>::max());  // 2^64 − 1
+  if (v >= 9223372036854775807.0) return std::to_string(static_cast<std::uint64_t>(v));
+  return std::to_string(static_cast<std::int64_t>(v));
+}
 
 std::string quoted_words(const Form& f) {
   std::string list;
@@ -414,8 +419,12 @@ std::optional<std::string> refusal(const Key& key, const Value& v) {
       return std::nullopt;
     }
     case Kind::integer: {
-      const auto x = v.get<std::int64_t>();
-      if (x < f.lo || x > f.hi)
+      // Beyond 2^63 − 1 an integer is unsigned (brush.seed takes every 64-bit seed): compared as such.
+      const double x = v.is_number_unsigned() ? static_cast<double>(v.get<std::uint64_t>())
+                                              : static_cast<double>(v.get<std::int64_t>());
+      const bool inside = v.is_number_unsigned() ? x >= f.lo && x <= f.hi
+                                                 : v.get<std::int64_t>() >= f.lo && v.get<std::int64_t>() <= f.hi;
+      if (!inside)
         return check.out_of_range.empty() ? "must be in " + integer_text(f.lo) + ".." + integer_text(f.hi) : check.out_of_range;
       return std::nullopt;
     }

@@ -262,6 +262,14 @@ double available_disk_bytes(const std::filesystem::path& dir) {
   return ec ? 0.0 : static_cast<double>(space.available);
 }
 
+void refuse_folders_under_file_names(const std::filesystem::path& dir, const std::vector<std::string>& names,
+                                     const std::string& writer) {
+  std::error_code ec;
+  for (const std::string& name : names)
+    if (std::filesystem::is_directory(std::filesystem::symlink_status(dir / name, ec)))
+      throw std::runtime_error((dir / name).string() + ": is a folder, where " + writer + " writes its file " + name);
+}
+
 void prepare_output_folder(const std::filesystem::path& dir) {
   std::error_code ec;
   // A link to nowhere: "cannot create the output folder (File exists)" did not say why.
@@ -327,9 +335,8 @@ PassFiles::PassFiles(const std::filesystem::path& dir, int n, int history_revolu
     // A folder under one of the names the run writes would make the final rename fail after the
     // whole computation: refused before it starts.
     std::error_code ec;
-    for (const char* name : {"history.csv", "events.csv", "revolutions.csv", "force_bins.csv", "summary.json"})
-      if (fs::is_directory(fs::symlink_status(dir / name, ec)))
-        throw std::runtime_error((dir / name).string() + ": is a folder, where the run writes its file " + name);
+    refuse_folders_under_file_names(dir, {"history.csv", "events.csv", "revolutions.csv", "force_bins.csv", "summary.json"},
+                                    "the run");
     // With the lock held no live run writes here: temporaries are a killed run's leftovers.
     for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
       const std::string name = e.path().filename().string();

@@ -118,16 +118,17 @@ StaticEquilibrium static_equilibrium(const BeamModel& beam, double tip_load_n, c
 }
 
 std::vector<std::string> static_warnings(const BeamModel& beam, const StaticEquilibrium& s, double tip_load_n,
-                                         double deflection_warning_ratio) {
+                                         double deflection_warning_ratio, double load_parameter) {
   std::vector<std::string> w;
   const double ratio = std::abs(s.tip_y) / beam.beam_length();
   // PL²/EI ≈ 3P/(load scale): the elastica bends within √(EI/P) = L/√(PL²/EI) of its clamp, which
   // n modes resolve down to about L/n.
-  const double k = 3.0 * std::abs(tip_load_n) / s.load_scale;
+  // The caller's exact PL²/EI where given: one value in the output, not two that differ.
+  const double k = std::isnan(load_parameter) ? 3.0 * std::abs(tip_load_n) / s.load_scale : std::abs(load_parameter);
   const int n = beam.modes();
   if (k > static_cast<double>(n) * n) {
     std::ostringstream b;
-    b << "the load (PL²/EI ≈ " << k << ") bends the filament within about " << 1.0 / std::sqrt(k)
+    b << "the load (PL²/EI " << (std::isnan(load_parameter) ? "≈ " : "= ") << k << ") bends the filament within about " << 1.0 / std::sqrt(k)
       << " L of its clamp, finer than " << n << " modes resolve (about " << 1.0 / n << " L): give more modes (beam.modes)";
     w.push_back(b.str());
   }

@@ -132,7 +132,7 @@ void PassDriver::free_flight() {
       if (!o.note->warning.empty()) rec_.warn(state_.t, state_.q, o.note->warning);
     }
     instant_transitions_ = 0;
-    if (rec_.stop_requested(state_.t)) break;
+    if (rec_.stop_requested(state_.t, state_.q)) break;
   }
   finish(Phase::free);
 }
@@ -156,7 +156,7 @@ bool PassDriver::clear_for_the_rest() {
 }
 
 bool PassDriver::impacts_exhausted() {
-  if (!rec_.impacts_exhausted(state_.t)) return false;
+  if (!rec_.impacts_exhausted(state_.t, state_.q)) return false;
   finish(Phase::free);
   return true;
 }
@@ -222,13 +222,14 @@ void PassDriver::contact() {
     instant_transitions_ = 0;
     if (section && cross_section()) break;
     report_progress();
-    if (rec_.stop_requested(state_.t)) break;
+    if (rec_.stop_requested(state_.t, state_.q)) break;
   }
   finish(state_.phase);
 }
 
 void PassDriver::fail_at(FailureKind kind, double t, const std::string& message, Phase phase) {
-  rec_.fail(kind, t, message);
+  // A failure at the state's own time has the state (a stepper's may lie inside its step).
+  rec_.fail(kind, t, message, t == state_.t ? &state_.q : nullptr);
   finish(phase);
 }
 

@@ -42,14 +42,14 @@ PassRecorder::PassRecorder(const System& system, const PassOptions& options, con
   observers_.insert(observers_.end(), {&metrics_, &bins_, &validity_, &sampler_, &book_});
 }
 
-bool PassRecorder::stop_requested(double t) {
+bool PassRecorder::stop_requested(double t, const Eigen::VectorXd& q) {
   if (ctx_.result.failure) return true;
   if (ctx_.control.stop && ctx_.control.stop->stop_requested()) {
-    fail(FailureKind::interrupted, t, "the run was interrupted (SIGINT/SIGTERM or a stop request); results up to here are kept");
+    fail(FailureKind::interrupted, t, "the run was interrupted (SIGINT/SIGTERM or a stop request); results up to here are kept", &q);
     return true;
   }
   if (validity_.breached()) {
-    fail(FailureKind::validity, t, validity_.breach_message());
+    fail(FailureKind::validity, t, validity_.breach_message(), &q);
     return true;
   }
   return false;
@@ -68,14 +68,15 @@ void PassRecorder::start(double t, const Eigen::VectorXd& q, const Eigen::Vector
   sampler_.start(t, q, qd);
 }
 
-bool PassRecorder::impacts_exhausted(double t) {
+bool PassRecorder::impacts_exhausted(double t, const Eigen::VectorXd& q) {
   const int max = ctx_.options.max_impacts;
   if (metrics_.impacts_counted() < max) return false;
   fail(FailureKind::impacts, t,
        "more than " + std::to_string(max) + (max == 1 ? " impact" : " impacts") +
            (ctx_.revolution > 0 ? " in one revolution" : " in one pass") + " (simulation.max_impacts = " +
            std::to_string(max) +
-           "): impacts accumulate (raise simulation.max_impacts, or impact.plastic_below_m_s to end a bouncing sequence)");
+           "): impacts accumulate (raise simulation.max_impacts, or impact.plastic_below_m_s to end a bouncing sequence)",
+       &q);
   return true;
 }
 
@@ -170,7 +171,7 @@ void PassRecorder::warn(double t, const Eigen::VectorXd& q, const std::string& m
   event(EventKind::warning, t, q, message);
 }
 
-void PassRecorder::fail(FailureKind kind, double t, const std::string& message) {
+void PassRecorder::fail(FailureKind kind, double t, const std::string& message, const Eigen::VectorXd* q) {
   NumericalFailure f;
   f.kind = kind;
   f.t = t;
@@ -180,7 +181,9 @@ void PassRecorder::fail(FailureKind kind, double t, const std::string& message) 
   PassEvent e;
   e.t = t;
   e.theta = f.theta;
-  e.y_tip = NAN;  // the failure's instant may lie inside a step, where the state is not known
+  // The state at t where it is known (the one the history's last row is written from); a failure
+  // inside a step, whose state is not known there, has none.
+  e.y_tip = q ? ctx_.tip_y(t, *q) : NAN;
   e.kind = EventKind::failure;
   e.detail = std::string(failure_name(kind)) + ": " + message;
   emit(e);

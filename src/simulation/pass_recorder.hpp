@@ -50,7 +50,10 @@ public:
   void ended_clear(double t) { ctx_.result.summary.ended_clear_deg = ctx_.system.beam.theta(t) * 180.0 / M_PI; }
   /// A warning: kept once in the summary and recorded as an event at t.
   void warn(double t, const Eigen::VectorXd& q, const std::string& message) override;
-  void fail(FailureKind kind, double t, const std::string& message);
+  /// The failure that stops the pass at t. `q`: the state at t where it is known (the failure event
+  /// then has the tip's y from it, as the history's last row has); nullptr where t lies inside a
+  /// step whose state is not known (y_tip NaN).
+  void fail(FailureKind kind, double t, const std::string& message, const Eigen::VectorXd* q);
   /// The end of the pass (after a failure too): closes an open episode, the last row, the summary.
   void finish(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Phase phase,
               const StepperStatistics& statistics);
@@ -68,10 +71,10 @@ public:
   bool failed() const { return ctx_.result.failure.has_value(); }
   /// True when the pass must stop now: a stop was requested, or the validity limit was breached
   /// with deflection_limit_is_error (the failure is recorded the first time it is seen).
-  bool stop_requested(double t);
+  bool stop_requested(double t, const Eigen::VectorXd& q);
   /// True (with an `impacts` failure recorded) when the pass (or, over many revolutions, the
   /// revolution) already had options.max_impacts impacts.
-  bool impacts_exhausted(double t);
+  bool impacts_exhausted(double t, const Eigen::VectorXd& q);
 
 private:
   void open_revolution(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd);

@@ -276,6 +276,13 @@ std::size_t sweep_grid_size(const std::vector<SweepAxis>& axes) {
     for (std::size_t j = 0; j < i; ++j)
       if (axes[j].key == axes[i].key)
         throw ConfigError("--vary " + axes[i].key + ": the key is varied twice (give all its values in one --vary)");
+    // A value given twice runs the same case twice under one coordinate (which is sweep.csv's row
+    // of it?): refused as a key varied twice is. Values written alike here; values written apart
+    // that read the same (0.1 and 0.10) once the cases are loaded (plan_sweep).
+    std::set<std::string> values;
+    for (const std::string& v : axes[i].values)
+      if (!values.insert(v).second)
+        throw ConfigError("--vary " + axes[i].key + ": the value " + printable(v) + " is given twice (give each value once)");
     total *= axes[i].values.size();
     if (total > kMaxSweepCases)
       throw ConfigError("--vary: the grid has more than " + std::to_string(kMaxSweepCases) +
@@ -328,6 +335,19 @@ SweepPlan plan_sweep(const std::vector<SweepAxis>& axes, const CaseLoader& load)
       std::string values;
       for (const std::string& o : c.overrides) values += (values.empty() ? "" : ", ") + o;
       throw ConfigError(c.folder + " (" + values + "): " + e.what());
+    }
+  }
+  // Two values of one key that read the same (0.1 and 0.10, 3000 and 3000.0) make the same cases:
+  // each value's case with the other keys at their first values is compared, whole.
+  std::size_t stride = plan.cases.size();
+  for (const SweepAxis& axis : axes) {
+    stride /= axis.values.size();
+    std::map<std::string, std::size_t> seen;  // a case's configuration → the value that made it
+    for (std::size_t a = 0; a < axis.values.size(); ++a) {
+      const auto [at, fresh] = seen.emplace(plan.configs[a * stride].to_json().dump(), a);
+      if (!fresh)
+        throw ConfigError("--vary " + axis.key + ": " + printable(axis.values[at->second]) + " and " +
+                          printable(axis.values[a]) + " are the same value, given twice (give each value once)");
     }
   }
   // A sweep is over brushes or over single filaments (a --vary of a brush key sets it in every case).
@@ -467,14 +487,21 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
                         " free where " + options.dir.string() + " goes (sample less often)");
   }
   report.brush = plan.brush;
-  // A run's folder (its summary.json) is not made a sweep's as well: `plot` would draw one of the two.
-  if (std::filesystem::exists(options.dir / "summary.json"))
-    throw ConfigError("-o " + options.dir.string() + ": holds a run (summary.json), not a sweep; give another folder");
+  // A run's or a brush's folder (its summary.json) is not made a sweep's as well: `plot` would draw
+  // one of the two.
+  if (std::filesystem::exists(options.dir / "summary.json")) {
+    std::ifstream in(options.dir / "summary.json");
+    const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+    const bool brush = j.is_object() && j.contains("kind") && j["kind"] == "brush";
+    throw ConfigError("-o " + options.dir.string() + (brush ? ": holds a brush" : ": holds a run") +
+                      " (summary.json), not a sweep; give another folder");
+  }
   if (std::filesystem::exists(options.dir / "manifest.json") && std::filesystem::exists(options.dir / "report.md"))
     throw ConfigError("-o " + options.dir.string() +
                       ": holds a reproduction (manifest.json, report.md), not a sweep; give another folder");
   std::optional<FolderLock> lock;  // one sweep at a time in a folder (each case folder has its own)
   try {
+    refuse_folders_under_file_names(options.dir, {"sweep.csv", "sweep.json", "sweep.nc"}, "the sweep");
     prepare_output_folder(options.dir);
     lock.emplace(options.dir);
   } catch (const std::runtime_error& e) {

@@ -325,7 +325,9 @@ MergeReport merge_sweeps(const MergeOptions& options) {
   report.sweep.results.resize(cases.size());
   report.sweep.grid_cases = cases.size();
   report.sweep.brush = d0.at("brush").get<bool>();
-  report.shards = count;
+  report.shard_count = count;
+  for (const ShardFolder& f : shards)  // a shard beyond the grid's cases (shard 3/4 of 2 cases) holds none
+    if (static_cast<std::size_t>(f.shard.index) < cases.size()) ++report.shards;
   std::string expected_header = [&] {
     SweepReport empty;
     empty.axes = axes;
