@@ -31,7 +31,7 @@ class ProgressClock {
 
  private:
   std::chrono::steady_clock::time_point start_, next_, last_read_;
-  long calls_ = 0, stride_ = 1;
+  long calls_ = 0, stride_ = 2;  // the first report comes after a step
   double elapsed_s_ = 0.0;
 };
 
