@@ -126,12 +126,13 @@ def test_plot_says_what_it_cannot_write(tmp_path):
     # An output folder that cannot be made: exit 2, as for `run -o`.
     done = run("plot", str(tmp_path / "r"), "-o", "/proc/rotbeam-cannot-be-here")
     assert done.returncode == 2 and "cannot create the output folder" in done.stderr, done.stderr
-    # A picture whose name is a folder: the user's name in the message, not a temporary's.
+    # A picture whose name is a folder: refused before drawing (exit 2, as run and sweep refuse a
+    # folder under one of their files' names), naming the user's path, not a temporary's.
     (tmp_path / "p").mkdir()
     (tmp_path / "p" / "tip_path.png").mkdir()
     done = run("plot", str(tmp_path / "r"), "-o", str(tmp_path / "p"))
-    assert done.returncode == 1 and done.stderr.count("\n") == 1, done.stderr
-    assert f"{tmp_path / 'p' / 'tip_path.png'}: Is a directory" in done.stderr, done.stderr
+    assert done.returncode == 2 and done.stderr.count("\n") == 1, done.stderr
+    assert f"{tmp_path / 'p' / 'tip_path.png'}: is a folder, where plot writes its file tip_path.png" in done.stderr, done.stderr
     assert not [p for p in (tmp_path / "p").iterdir() if ".tmp" in p.name]
     # Standard output that cannot be written: one line, exit 1.
     with open("/dev/full", "w") as full:
