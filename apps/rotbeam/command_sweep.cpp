@@ -36,14 +36,14 @@ bool wants_netcdf(const std::string& format) {
   return format == "netcdf";
 }
 
-// Before any work: the Python that writes sweep.nc can (xarray and netCDF4 import). Its module
-// says what is missing on one line; exit 2 then, with nothing run. Returns false when a Ctrl-C
-// (SIGINT/SIGTERM) stopped the check: the caller says so in one line and exits 130.
-bool check_netcdf_writer() {
-  const int code = run_python_module("rotbeam.netcdf", {"--check"}, kNetcdfWriter, false);
-  if (code == kInterrupted) return false;
-  if (code != 0) throw ConfigError("--format netcdf: sweep.nc cannot be written here (above: why); use --format csv");
-  return true;
+// Before any work: the Python that writes sweep.nc can (xarray and netCDF4 import). Returns 0 when it
+// can; kBadInput when not, the module having said why in the one line of the refusal (naming
+// --format netcdf and what to install), nothing run; kInterrupted when a Ctrl-C (SIGINT/SIGTERM)
+// stopped the check: the caller says so in one line.
+int check_netcdf_writer() {
+  const int code = run_python_module("rotbeam.netcdf", {"--check", "--then", "use --format csv"}, kNetcdfWriter, false);
+  if (code == kInterrupted || code == 0) return code;
+  return kBadInput;
 }
 
 // The hook that writes DIR/sweep.nc from the finished index (sweep.csv's text in `csv`), before
@@ -70,7 +70,9 @@ int run_sweep_command(const SweepCommandOptions& o) {
   options.jobs = o.jobs;
   if (!o.shard.empty()) options.shard = parse_shard(o.shard);
   install_interrupt_handlers();  // from here on, a Ctrl-C is reported (it ended the process silently)
-  if (netcdf && (!check_netcdf_writer() || interrupt_token().stop_requested())) {
+  const int writer = netcdf ? check_netcdf_writer() : 0;
+  if (writer == kBadInput) return kBadInput;
+  if (netcdf && (writer == kInterrupted || interrupt_token().stop_requested())) {
     print_error("sweep interrupted before any case ran: nothing written");
     return kInterrupted;
   }
@@ -164,7 +166,9 @@ int run_merge_command(const MergeCommandOptions& o) {
   for (const std::string& d : o.dirs) options.dirs.emplace_back(d);
   options.output = o.output_dir;
   install_interrupt_handlers();
-  if (netcdf && (!check_netcdf_writer() || interrupt_token().stop_requested())) {
+  const int writer = netcdf ? check_netcdf_writer() : 0;
+  if (writer == kBadInput) return kBadInput;
+  if (netcdf && (writer == kInterrupted || interrupt_token().stop_requested())) {
     print_error("merge interrupted before anything was written");
     return kInterrupted;
   }

@@ -2,7 +2,7 @@
 --format netcdf` run.
 
     python3 -m rotbeam.netcdf DIR [--index CSV] [--then TEXT]   # DIR/sweep.nc from DIR/sweep.json and the index
-    python3 -m rotbeam.netcdf --check              # exit 0 when xarray and netCDF4 can write it, else one line and 2
+    python3 -m rotbeam.netcdf --check [--then T]   # exit 0 when xarray and netCDF4 can write it, else one line and 2
 
 The file holds rotbeam.open_sweep's Dataset (the swept keys as dimensions, every metric a variable
 with its units, status and message; the configuration and the version in the attributes) and is
@@ -93,10 +93,12 @@ def main(argv=None) -> int:
     from rotbeam import _interrupt
     if why and _interrupt.interrupted:  # a Ctrl-C broke the import: the interruption, not a missing package
         return 130
-    if why:
-        print(f"rotbeam: error: {why}", file=sys.stderr)
-        return 2
     then = f"; {args.then}" if args.then else ""
+    if why:
+        # One line: with --check, the refusal of `--format netcdf` itself (the caller adds none).
+        print(f"rotbeam: error: {'--format netcdf: ' if args.check else ''}{why}{then if args.check else ''}",
+              file=sys.stderr)
+        return 2
     if args.check:
         return 0
     if not args.folder:
