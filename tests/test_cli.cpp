@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include "test_support.hpp"
+
 #include <gtest/gtest.h>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -40,6 +42,7 @@ CliRun run(const std::string& args, const std::string& environment = "") {
     while (std::size_t got = fread(buf.data(), 1, buf.size(), f)) r.err.append(buf.data(), got);
     fclose(f);
   }
+  r.err = rotbeam::test::without_progress_lines(r.err);
   std::remove(err_file.c_str());
   return r;
 }

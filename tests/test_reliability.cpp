@@ -97,7 +97,7 @@ Outcome run(const std::string& args, const std::string& out_dir) {
   const int st = std::system(cmd.c_str());
   o.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
   std::ifstream e(err_file);
-  o.err.assign(std::istreambuf_iterator<char>(e), {});
+  o.err = rotbeam::test::without_progress_lines(std::string(std::istreambuf_iterator<char>(e), {}));
   fs::remove(err_file);
   return o;
 }

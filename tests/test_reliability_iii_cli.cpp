@@ -1,6 +1,7 @@
 // Reliability III, on the command line: commands that re-read a run, refuse what they would write
 // badly, and say what they did (docs/reliability.md holds the one-line refusals as table rows).
 #include "rotbeam/config.hpp"
+#include "test_support.hpp"
 
 #include <array>
 #include <cstdint>
@@ -39,7 +40,7 @@ CliRun cli(const std::string& args) {
   const int st = pclose(pipe);
   r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
   std::ifstream e(err_file);
-  r.err.assign(std::istreambuf_iterator<char>(e), {});
+  r.err = rotbeam::test::without_progress_lines(std::string(std::istreambuf_iterator<char>(e), {}));
   std::remove(err_file.c_str());
   return r;
 }
