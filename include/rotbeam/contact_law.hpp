@@ -94,7 +94,7 @@ inline constexpr double kGrazingSpeedFloor = 1e-3;
 /// and full tip speed `full_speed` [m/s]: e from law.impact (a constant, or Yigit's e(v) capped,
 /// without the rigid law's plastic floor impact.plastic_below_m_s, and at least
 /// kMinCompliantRestitution), c = hunt_crossley_product(e) / max(v0, kGrazingSpeedFloor). The speed
-/// floor bounds c for grazing touches (their restitution is then above e). SPEC §11.
+/// floor bounds c for grazing touches (their restitution is then above e). docs/contact.md.
 double hertz_damping(const ContactSettings& law, double v0, double full_speed);
 
 /// The Hertz normal force F_n = max(0, k δ^{3/2}(1 + c δ̇)) [N] for the stiffness k [N/m^{3/2}] at

@@ -1,5 +1,5 @@
 // The output grids of a pass's history (output.interval_s, output.near_surface_interval_s): the
-// times k·h, k a whole number, at which rows are written (SPEC §7).
+// times k·h, k a whole number, at which rows are written (docs/cli.md, history.csv).
 #pragma once
 
 namespace rotbeam {

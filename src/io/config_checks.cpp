@@ -243,7 +243,7 @@ void check_start(Config& c, const GivenValues& given) {
   if (c.initial.start == "flexible") {
     // A flexible start must begin clear of the surface ...
     const Eigen::VectorXd q0 = Eigen::Map<const Eigen::VectorXd>(c.initial.modal_displacement.data(), n);
-    // ... and inside the geometry the model can represent (SPEC §10).
+    // ... and inside the geometry the model can represent (docs/model.md, validity).
     const double reach = tip_reach(beam, q0);
     const bool displaced = was_given(given, "initial.modal_displacement");
     if (!(reach <= kReachLimit)) {
