@@ -6,7 +6,8 @@
 #   3. the configuration fuzz target (libFuzzer) for ROTBEAM_FUZZ_SECONDS (default 60).
 # Steps 2 and 3 share one build (clang: the library is compiled once for both). It runs beside the
 # Release tests, at a lower priority: the tests come first, the build takes the time they leave the
-# cores idle. Each stage prints its time ("== stage: N s"), and the whole its total.
+# cores idle. The fuzzing (one process) runs beside the sanitizer tests in the same way. Each stage
+# prints its time ("== stage: N s"), and the whole its total.
 # ROTBEAM_QUICK=1 runs only step 1.
 set -euo pipefail
 set -m  # the background build in a process group of its own, ended with the script on a failure
@@ -65,13 +66,18 @@ if [ "$quick" = 1 ]; then
   exit 0
 fi
 
-echo "== AddressSanitizer + UndefinedBehaviorSanitizer tests (all but the tests labelled long)"
 renice -n 0 -g "${background[0]}" > /dev/null 2>&1 || true  # nothing to give way to any more (as root)
 wait "${background[0]}"
 background=()
 rm -f build-asan.log
-stage "sanitizer tests" sanitizer_tests
 
-echo "== fuzzing the configuration parser for $fuzz_seconds s"
-stage "fuzz" fuzz
+echo "== fuzzing the configuration parser for $fuzz_seconds s, beside the sanitizer tests"
+(renice -n 10 "$BASHPID" > /dev/null
+ stage "fuzz" fuzz > build-asan/fuzz.log 2>&1 || { cat build-asan/fuzz.log; exit 1; }
+ cat build-asan/fuzz.log) &
+background+=("$!")
+echo "== AddressSanitizer + UndefinedBehaviorSanitizer tests (all but the tests labelled long)"
+stage "sanitizer tests" sanitizer_tests
+wait "${background[0]}"
+background=()
 echo "== total: $((SECONDS - started)) s"

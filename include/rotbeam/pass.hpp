@@ -233,4 +233,11 @@ public:
 PassResult run_pass(const System& system, const InitialConditions& initial, const PassOptions& options,
                     const PassControl& control = {});
 
+class Stepper;
+/// run_pass over a stepper the caller made (stepper.hpp's contract): a scheme of the caller's own, or
+/// a test's scripted stepper that checks the driver's logic without integrating anything. The stepper
+/// must be fresh (no step taken); options.scheme is only reported.
+PassResult run_pass_with(const System& system, const InitialConditions& initial, const PassOptions& options,
+                         Stepper& stepper, const PassControl& control = {});
+
 }  // namespace rotbeam
