@@ -174,7 +174,7 @@ public:
   std::vector<double> starts, stops;   // every step's start time and t_stop [s]
   int contact_starts = 0;
 
-  StepperTraits traits() const override { return {Scheme::adaptive, true, true}; }
+  StepperTraits traits() const override { return {Scheme::adaptive, true, true, false}; }
   void begin_free(const FilamentState&, FreeStart start) override { free_starts.push_back(start); }
   void begin_contact(const FilamentState&) override { ++contact_starts; }
   StepOutcome step(FilamentState& state, double t_stop) override {

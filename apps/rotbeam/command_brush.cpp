@@ -130,10 +130,18 @@ int run_brush_command(const BrushCommandOptions& o) {
                   o.output_dir + " hold the others");
       return kInterrupted;
     }
-    print_error("filament " + std::to_string(r.summary.failed_filament + 1) + " failed (" + failure_name(f.kind) +
-                ") at t = " + number_text(f.t) + " s, θ = " + fixed(f.theta * 180.0 / M_PI, 4) + " deg: " + f.message +
-                "; the sums in " + o.output_dir + " leave out " + counted(r.summary.failed, "filament"));
-    return exit_code_for_failure(f.kind);
+    const std::string first = "filament " + std::to_string(r.summary.failed_filament + 1) + " failed (" +
+                              failure_name(f.kind) + ") at t = " + number_text(f.t) + " s, θ = " +
+                              fixed(f.theta * 180.0 / M_PI, 4) + " deg: " + f.message;
+    if (r.summary.steady + r.summary.not_steady == 0) {  // no filament that reaches the surface finished
+      print_error(first + "; no filament that reaches the surface finished: the brush has no result");
+      return exit_code_for_failure(f.kind);
+    }
+    print_error("partial brush: " + counted(r.summary.failed, "filament") + " of " +
+                std::to_string(r.summary.reaching) + " failed, the first: " + first + "; the sums in " + o.output_dir +
+                " leave them out and miss an estimated " + fixed(100.0 * r.summary.missing_force_fraction, 2) +
+                " % of the mean normal force (summary.json missing_force_fraction, filaments.csv status)");
+    return kPartialBrush;
   }
   if (!r.summary.error.empty()) {
     print_error(r.summary.error + "; the sums in " + o.output_dir + " leave it out");

@@ -25,6 +25,7 @@ enum ExitCode : int {
   kRuntimeFailure = 1,  // I/O failure or an unexpected internal error
   kBadInput = 2,        // command line or configuration rejected
   kNoImpact = 3,        // `rotbeam impact`: the tip never reached the surface before the end angle
+  kPartialBrush = 11,   // `rotbeam brush`: some filaments failed, the others' sums are written
   // 4–10 and 130: a pass stopped on a diagnosed numerical failure or a stop request; the partial
   // results are written. The code of each failure kind is in the library's table (outcome.hpp).
   kInterrupted = 130,  // SIGINT/SIGTERM: stopped cleanly, partial results written

@@ -75,6 +75,11 @@ struct BrushSummary {
   double wall_time_s = 0;
   std::optional<NumericalFailure> failure;  // the first filament's failure (or the interruption), if any
   int failed_filament = -1;                 // its index
+  std::vector<int> failed_indices;          // every filament that reaches the surface and failed (0-based)
+  // The share of the brush's mean normal force that the failed filaments are estimated to carry: each
+  // counted as the finished filament of the nearest depth fraction; 0 when none failed, NaN when no
+  // filament finished.
+  double missing_force_fraction = 0;
   std::string error;                        // a filament whose run ended without a result, in words ("" for none)
   std::vector<std::string> warnings;
 };

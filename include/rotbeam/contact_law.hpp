@@ -148,6 +148,14 @@ ContactLoad contact_load(const FrictionModel& friction, const TipKinematics& tip
                          const Eigen::Ref<const Eigen::VectorXd>& qd, double lambda, double slip_direction,
                          Eigen::Ref<Eigen::VectorXd> generalized_force);
 
+/// The same for a tangential force F_t [N] on the tip along the tangent given directly (a stuck tip's,
+/// solved with λ from the two constraints) instead of Coulomb's −μ_eff|λ| s_t. λ = 0 and F_t = 0 give
+/// the zero load.
+ContactLoad contact_load_with_friction(const FrictionModel& friction, const TipKinematics& tip,
+                                       const Eigen::Ref<const Eigen::VectorXd>& qd, double lambda,
+                                       double friction_force, double slip_direction,
+                                       Eigen::Ref<Eigen::VectorXd> generalized_force);
+
 // ---- the law as an object ------------------------------------------------------------------------
 
 /// How a stepper integrates a contact phase.
@@ -155,6 +163,8 @@ enum class PhaseKind {
   constraint,  // a constraint holds (C = 0): q and q̇ are projected onto it (mass-weighted) before and
                // after every step, and every step starts the error control afresh
   force,       // a smooth force of the state: ordinary error-controlled steps
+  locked,      // two constraints hold (C = 0 and V_t = 0: the tip sticks): q is projected onto C = 0 and
+               // q̇ onto Ċ = 0, V_t = 0 before and after every step, which starts the error control afresh
 };
 
 /// A root function of a contact phase. Every root function is oriented so that its event is a
@@ -192,6 +202,9 @@ public:
   virtual BeamWorkspace& workspace() = 0;
   virtual TipKinematics& tip() = 0;
   virtual Eigen::VectorXd& scratch() = 0;
+  /// Whether the stepper integrates a stick phase (a PhaseKind::locked phase with its roots located);
+  /// false: a stick stops the pass with its diagnostic (the thesis scheme).
+  virtual bool holds_stick() const = 0;
   /// The stepper's choice at a contact start whose acceleration-level multiplier is positive: true,
   /// the tip lifts off at once; false, its own contact step decides (the thesis's corrector).
   virtual bool lifts_off_on_positive_multiplier() const = 0;

@@ -46,6 +46,7 @@ struct ImpactResult {
   double tangential_impulse = 0;       // P_t along the tangent (Coulomb impacts; |P_t| ≤ μ|P|) [N s]
   double impulse_x = 0, impulse_y = 0; // the impulse on the tip, global frame [N s]
   bool jammed = false;                 // a frictional impact whose normal approach never ends (impact Painlevé)
+  bool tangential = false;             // an impact without collision at a Painlevé point (apply_tangential_impact)
   double contact_work = 0;             // work of the contact impulse on the tip [J]: surface_work − (the energy the impact dissipates)
   double surface_work = 0;             // its part P⃗·V_s that a moving surface does (0 at rest, and without friction) [J]
 };
@@ -69,5 +70,17 @@ inline bool rebounds(const ImpactResult& r) { return r.restitution > 1e-12; }
 ImpactResult apply_impact(const BeamModel& beam, const Surface& surface, const ImpactLaw& law, double t,
                           const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Ref<Eigen::VectorXd> qd,
                           BeamWorkspace& ws, TipKinematics& tip, double mu = 0.0);
+
+/// The tangential impact ("impact without collision": Génot & Brogliato 1999; Nordmark, Dankowicz &
+/// Champneys 2017) at a sliding contact state (C = 0, Ċ ≈ 0) where no contact force is admissible,
+/// a − b < 0 and c < 0 in a λ + b|λ| = c (Painlevé's paradox, docs/contact.md): sliding drives the tip
+/// into the surface, so an impulse arises with no approach speed. It is the Coulomb impact above
+/// from Ċ⁻ = max(Ċ, 0) with e = 0: the normal impulse grows while friction slows the slip until V_t = 0,
+/// then the tip sticks in impulse space and compression ends at Ċ = 0. `jammed` where the slip does
+/// not slow (|a_nt| > μ a_tt: no impulse resolves it), or where ∇C ∥ g_t or μ = 0 (no paradox there).
+/// Applies the impulse to qd in place; restitution 0; `tangential` set.
+ImpactResult apply_tangential_impact(const BeamModel& beam, const Surface& surface, double t,
+                                     const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Ref<Eigen::VectorXd> qd,
+                                     BeamWorkspace& ws, TipKinematics& tip, double mu);
 
 }  // namespace rotbeam

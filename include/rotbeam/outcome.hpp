@@ -22,6 +22,8 @@ enum class EventKind {
   failure,            // the numerical failure that stopped the pass
   end,                // the end of the pass
   clear,              // simulation.end_when_clear: the tip cannot reach the surface again before the end angle
+  stick_start,        // the tip sticks: V_t = 0 and the tangential force it needs lies inside the friction cone
+  stick_end,          // the stick ends: the tangential force reached μ F_n and the tip slides
 };
 
 /// Why a pass stopped before its end angle (summary.json `failure.kind`).
@@ -71,7 +73,7 @@ inline constexpr std::array<FailureInfo, 10> kFailures = {{
     {FailureKind::interrupted, "interrupted", 130, "stopped on request; results up to there kept"},
 }};
 
-inline constexpr std::array<std::pair<EventKind, const char*>, 10> kEvents = {{
+inline constexpr std::array<std::pair<EventKind, const char*>, 12> kEvents = {{
     {EventKind::impact, "impact"},
     {EventKind::lift_off, "lift_off"},
     {EventKind::contact_start, "contact_start"},
@@ -82,6 +84,8 @@ inline constexpr std::array<std::pair<EventKind, const char*>, 10> kEvents = {{
     {EventKind::failure, "failure"},
     {EventKind::end, "end"},
     {EventKind::clear, "clear"},
+    {EventKind::stick_start, "stick_start"},
+    {EventKind::stick_end, "stick_end"},
 }};
 
 }  // namespace detail

@@ -64,6 +64,7 @@ struct RevolutionRecord {
   double mean_hub_power_w = 0;          // hub work / Δt
   double max_tip_deflection_ratio = 0;
   double contact_time_s = 0;
+  double stick_time_s = 0;  // the part of contact_time_s in which the tip stuck [s]
   double peak_normal_force_n = 0;
   // The relative change of the section state z = (q/L, q̇/(ωL)) at the revolution's end from the
   // previous section: ‖Δz‖ / max(‖z_k‖, ‖z_(k−1)‖) (0 when both are 0); NaN for an incomplete one.
@@ -120,6 +121,7 @@ struct PassSummary {
   double first_impact_deg = NAN;
   double last_separation_deg = NAN;
   double contact_time_s = 0;
+  double stick_time_s = 0;  // the part of contact_time_s in which the tip stuck [s]
   double peak_normal_force_n = 0;
   double mean_normal_force_n = 0;
   // The ledger of the pass in the inertial frame (SPEC §7, §11; ledger.hpp): works signed as energy

@@ -37,6 +37,18 @@ struct SlipDecision {
 /// physical slip speed; the sign of V_t is never taken from round-off, SPEC §10).
 double stick_speed_threshold(const BeamModel& beam);
 
+/// The forces that hold the tip locked (two constraints: C̈ = ∇Cᵀq̈ + γ = 0 and V̇_t = gᵀq̈ + γ_t = 0
+/// with M q̈ = −Ψ + λ∇C + F_t g, g = ∂V_t/∂q̇): the multiplier λ [N] (≤ 0 pressing) and the tangential
+/// force F_t [N] on the tip along the tangent. Where ∇C ∥ g (the straight filament on the plane, whose
+/// tip moves only along its local y) holding the gap holds the slip: `dependent`, λ = c/a and F_t = 0.
+/// Requires `tip` filled at (t, q, q̇) and ws.mass_llt/ws.psi evaluated at (q, q̇); uses ws.scratch,
+/// ws.scratch2.
+struct LockedTipForces {
+  double lambda = 0, tangential = 0;
+  bool dependent = false;
+};
+LockedTipForces locked_tip_forces(const TipKinematics& tip, BeamWorkspace& ws);
+
 /// Decides the slip direction at (t, q, q̇). If |V_t| exceeds the threshold, s_t = sign(V_t).
 /// Otherwise the tip is locked tangentially (two constraints, C = 0 and V_t = 0) and the normal
 /// and tangential forces needed are solved: λ > 0 → separate; |tangential| ≤ μ_eff|λ| → stick;

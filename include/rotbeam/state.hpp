@@ -39,7 +39,8 @@ struct System {
 /// in its force (contact_law.hpp says what each law keeps in `parameter`).
 struct ContactEpisode {
   double slip = 0;                    // s_t ∈ [−1, +1]: the friction acts against it
-  std::array<double, 4> parameter{};  // the law's own (the rigid law: λ0; the compliant law: Hunt–Crossley c)
+  std::array<double, 4> parameter{};  // the law's own (the rigid law: λ0, and 1 in [1] while the tip
+                                      // sticks; the compliant law: Hunt–Crossley c)
 };
 
 /// The state of one filament: time, modal coordinates and velocities, phase, and the contact episode

@@ -75,6 +75,9 @@ struct StepperTraits {
   // At a contact start whose acceleration-level multiplier is positive: true, the tip lifts off at
   // once; false, the stepper's own contact step decides (the thesis's corrector may keep contact).
   bool lifts_off_on_positive_multiplier;
+  // True: the stepper integrates a locked phase (PhaseKind::locked, a stick) and locates its roots;
+  // false: a stick stops the pass with its diagnostic (the thesis scheme).
+  bool holds_stick;
 };
 
 /// How free flight begins. A pass start (the start of a run, or a revolution's section) depends on

@@ -23,15 +23,24 @@ void friction_direction(const FrictionModel& friction, const TipKinematics& tip,
 ContactLoad contact_load(const FrictionModel& friction, const TipKinematics& tip,
                          const Eigen::Ref<const Eigen::VectorXd>& qd, double lambda, double slip_direction,
                          Eigen::Ref<Eigen::VectorXd> generalized_force) {
+  return contact_load_with_friction(friction, tip, qd, lambda,
+                                    -effective_friction(friction, tip) * std::abs(lambda) * slip_direction,
+                                    slip_direction, generalized_force);
+}
+
+ContactLoad contact_load_with_friction(const FrictionModel& friction, const TipKinematics& tip,
+                                       const Eigen::Ref<const Eigen::VectorXd>& qd, double lambda,
+                                       double friction_force, double slip_direction,
+                                       Eigen::Ref<Eigen::VectorXd> generalized_force) {
   ContactLoad l;
   l.slip = slip_direction;
-  if (lambda == 0.0) {
+  if (lambda == 0.0 && friction_force == 0.0) {
     generalized_force.setZero();
     return l;
   }
   l.lambda = lambda;
   l.normal_force = reported_normal_force(friction, tip, lambda);
-  l.friction_force = -effective_friction(friction, tip) * std::abs(lambda) * slip_direction;
+  l.friction_force = friction_force;
   generalized_force = lambda * tip.grad_gap + l.friction_force * tip.grad_tangent;
   l.force_x = lambda * tip.normal_x + l.friction_force * tip.tangent_x;
   l.force_y = lambda * tip.normal_y + l.friction_force * tip.tangent_y;

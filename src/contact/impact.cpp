@@ -103,6 +103,35 @@ CoulombImpulse coulomb_impulse(double ann, double ant, double att, double mu, do
 
 }  // namespace
 
+namespace {
+
+// What apply_impact and apply_tangential_impact share after the impulse (p normal as P along ∇C,
+// pt tangential) was applied to qd: the velocities after, the impulse on the tip, its works.
+void finish_impact(const BeamModel& beam, const Surface& surface, double t, const Eigen::Ref<const Eigen::VectorXd>& q,
+                   const Eigen::Ref<const Eigen::VectorXd>& qd, BeamWorkspace& ws, TipKinematics& tip, double p, double pt,
+                   bool coulomb, double coulomb_work, double v_before_x, double v_before_y, double t2_before,
+                   ImpactResult& r) {
+  tip_kinematics(beam, surface, t, q, qd, tip);
+  r.vx_after = tip.gap_rate;
+  r.vy_after = tip.slip_speed;
+  r.impulse = p;
+  r.tangential_impulse = pt;
+  r.impulse_x = p * tip.normal_x + pt * tip.tangent_x;
+  r.impulse_y = p * tip.normal_y + pt * tip.tangent_y;
+  // The tip velocity changes linearly with a fixed-direction impulse, so the impulse's work on the tip is
+  // P·(V⁻ + V⁺)/2 in the inertial frame; for a surface at rest and no friction it equals
+  // −½(1 − e²)(Ċ⁻)²/a. A Coulomb impulse turns as the tip slides, sticks or reverses: its work is
+  // summed over the segments, −∫Ċ dp + ∫V_t dP_t (+ P·V_s for a moving surface).
+  r.surface_work = r.impulse_x * tip.surface_vx + r.impulse_y * tip.surface_vy;
+  if (coulomb)
+    r.contact_work = coulomb_work + r.surface_work;
+  else
+    r.contact_work = 0.5 * (r.impulse_x * (v_before_x + tip.VX) + r.impulse_y * (v_before_y + tip.VY));
+  r.delta_t2 = 0.5 * detail::quadratic_form(ws.mass, qd) - t2_before;
+}
+
+}  // namespace
+
 ImpactResult apply_impact(const BeamModel& beam, const Surface& surface, const ImpactLaw& law, double t,
                           const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Ref<Eigen::VectorXd> qd,
                           BeamWorkspace& ws, TipKinematics& tip, double mu) {
@@ -150,26 +179,44 @@ ImpactResult apply_impact(const BeamModel& beam, const Surface& surface, const I
   } else {
     qd += p * minv_grad;
   }
-  tip_kinematics(beam, surface, t, q, qd, tip);
-  r.vx_after = tip.gap_rate;
-  r.vy_after = tip.slip_speed;
   r.restitution = e;
-  r.impulse = p;
   r.effective_inverse_mass = a;
   r.relative_energy_loss = coulomb ? -coulomb_work : 0.5 * (1.0 - e * e) * vx * vx / a;
-  r.tangential_impulse = pt;
-  r.impulse_x = p * tip.normal_x + pt * tip.tangent_x;
-  r.impulse_y = p * tip.normal_y + pt * tip.tangent_y;
-  // The tip velocity changes linearly with a fixed-direction impulse, so the impulse's work on the tip is
-  // P·(V⁻ + V⁺)/2 in the inertial frame; for a surface at rest and no friction it equals
-  // −½(1 − e²)(Ċ⁻)²/a. A Coulomb impulse turns as the tip slides, sticks or reverses: its work is
-  // summed over the segments, −∫Ċ dp + ∫V_t dP_t (+ P·V_s for a moving surface).
-  r.surface_work = r.impulse_x * tip.surface_vx + r.impulse_y * tip.surface_vy;
-  if (coulomb)
-    r.contact_work = coulomb_work + r.surface_work;
-  else
-    r.contact_work = 0.5 * (r.impulse_x * (v_before_x + tip.VX) + r.impulse_y * (v_before_y + tip.VY));
-  r.delta_t2 = 0.5 * detail::quadratic_form(ws.mass, qd) - t2_before;
+  finish_impact(beam, surface, t, q, qd, ws, tip, p, pt, coulomb, coulomb_work, v_before_x, v_before_y, t2_before, r);
+  return r;
+}
+
+ImpactResult apply_tangential_impact(const BeamModel& beam, const Surface& surface, double t,
+                                     const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Ref<Eigen::VectorXd> qd,
+                                     BeamWorkspace& ws, TipKinematics& tip, double mu) {
+  tip_kinematics(beam, surface, t, q, qd, tip);
+  ImpactResult r;
+  r.tangential = true;
+  r.vx_before = tip.gap_rate;
+  r.vy_before = tip.slip_speed;
+  const double v_before_x = tip.VX, v_before_y = tip.VY;
+  beam.evaluate_mass(q, ws);
+  Eigen::VectorXd& minv_grad = ws.scratch;
+  Eigen::VectorXd& minv_t = ws.scratch2;
+  minv_grad = tip.grad_gap;
+  ws.mass_llt.solveInPlace(minv_grad);
+  minv_t = tip.grad_tangent;
+  ws.mass_llt.solveInPlace(minv_t);
+  const double a = tip.grad_gap.dot(minv_grad), ant = tip.grad_gap.dot(minv_t), att = tip.grad_tangent.dot(minv_t);
+  r.effective_inverse_mass = a;
+  const CoulombImpulse c = mu > 0.0 && a * att - ant * ant > 1e-12 * a * att
+                               ? coulomb_impulse(a, ant, att, mu, 0.0, std::max(r.vx_before, 0.0), tip.slip_speed)
+                               : CoulombImpulse{0, 0, 0, 0, true};
+  if (c.jammed) {
+    r.jammed = true;
+    return r;
+  }
+  const double t2_before = 0.5 * detail::quadratic_form(ws.mass, qd);
+  const double coulomb_work = -c.normal_work + c.slip_work;
+  qd += -c.p * minv_grad + c.pt * minv_t;
+  r.restitution = 0.0;
+  r.relative_energy_loss = -coulomb_work;
+  finish_impact(beam, surface, t, q, qd, ws, tip, -c.p, c.pt, true, coulomb_work, v_before_x, v_before_y, t2_before, r);
   return r;
 }
 

@@ -40,9 +40,7 @@ SlipDecision decide_slip(const BeamModel& beam, const FrictionModel& friction, c
   return decide_slip_at_rest(friction, tip, ws);
 }
 
-SlipDecision decide_slip_at_rest(const FrictionModel& friction, const TipKinematics& tip, BeamWorkspace& ws) {
-  SlipDecision d;
-  d.from_velocity = false;
+LockedTipForces locked_tip_forces(const TipKinematics& tip, BeamWorkspace& ws) {
   // Two constraints: C̈ = ∇Cᵀq̈ + γ = 0 and V̇_t = gᵀq̈ + γ_t = 0 with M q̈ = −Ψ + λ∇C + λ_t g,
   // g = ∂V_t/∂q̇.
   Eigen::VectorXd& minv_grad = ws.scratch;
@@ -55,16 +53,31 @@ SlipDecision decide_slip_at_rest(const FrictionModel& friction, const TipKinemat
   // ∇CᵀM⁻¹Ψ and gᵀM⁻¹Ψ via the symmetric solves already made.
   const double cn = minv_grad.dot(ws.psi) - tip.gamma, ct = minv_g.dot(ws.psi) - tip.gamma_tangent;
   const double det = ann * att - ant * ant;
+  LockedTipForces f;
   if (det <= 1e-12 * ann * att) {
     // ∇C ∥ g (e.g. the straight beam on the plane, where the tip can only move along the beam's local
     // y): holding the gap also holds the slip, friction does no work, and the frictionless λ = c/a decides.
-    d.stick_normal = cn / ann;
+    f.dependent = true;
+    f.lambda = cn / ann;
+    return f;
+  }
+  f.lambda = (cn * att - ct * ant) / det;
+  f.tangential = (ann * ct - ant * cn) / det;
+  return f;
+}
+
+SlipDecision decide_slip_at_rest(const FrictionModel& friction, const TipKinematics& tip, BeamWorkspace& ws) {
+  SlipDecision d;
+  d.from_velocity = false;
+  const LockedTipForces f = locked_tip_forces(tip, ws);
+  if (f.dependent) {
+    d.stick_normal = f.lambda;
     d.stick_tangential = 0.0;
     d.kind = d.stick_normal > 0.0 ? SlipDecision::Kind::separate : SlipDecision::Kind::stick;
     return d;
   }
-  const double lambda = (cn * att - ct * ant) / det;
-  const double tangential = (ann * ct - ant * cn) / det;
+  const double lambda = f.lambda;
+  const double tangential = f.tangential;
   d.stick_normal = lambda;
   d.stick_tangential = tangential;
   if (lambda > 0.0) {

@@ -80,6 +80,7 @@ public:
         qd_(n_),
         force_(n_),
         w_(n_),
+        w2_(n_),
         pq_(n_),
         pqd_(n_),
         pa_(n_),
@@ -94,7 +95,7 @@ public:
     }
   }
 
-  StepperTraits traits() const override { return {Scheme::adaptive, true, true}; }
+  StepperTraits traits() const override { return {Scheme::adaptive, true, true, true}; }
 
   void begin_free(const FilamentState& s, FreeStart) override {
     phase_ = Phase::free;
@@ -284,8 +285,8 @@ private:
     return first_root([&g](int, double t) { return g(t); }, g, ta, tb, ga, samples);
   }
 
-  // ---- projection onto C = 0, Ċ = 0 (mass-weighted) ------------------------------------------
-  void project(double t) {
+  // ---- projection onto C = 0, Ċ = 0 (mass-weighted), and V_t = 0 for a locked phase ------------
+  void project(double t, bool locked) {
     for (int it = 0; it < 4; ++it) {
       tip_kinematics(sys_.beam, sys_.surface, t, q_, qd_, tip_);
       if (std::abs(tip_.gap) <= 1e-15 * sys_.beam.tip_radius()) break;
@@ -298,7 +299,22 @@ private:
     sys_.beam.evaluate_mass(q_, *ws_);
     w_ = tip_.grad_gap;
     ws_->mass_llt.solveInPlace(w_);
-    qd_ -= (tip_.gap_rate / tip_.grad_gap.dot(w_)) * w_;
+    const double ann = tip_.grad_gap.dot(w_);
+    if (locked) {
+      // Ċ and V_t are linear in q̇: q̇ −= M⁻¹W (WᵀM⁻¹W)⁻¹ (Ċ, V_t) with W = (∇C, ∂V_t/∂q̇) is exact. Where
+      // the two are parallel (locked_tip_forces' `dependent`) holding Ċ = 0 is all there is to hold.
+      w2_ = tip_.grad_tangent;
+      ws_->mass_llt.solveInPlace(w2_);
+      const double ant = tip_.grad_gap.dot(w2_), att = tip_.grad_tangent.dot(w2_);
+      const double det = ann * att - ant * ant;
+      if (det > 1e-12 * ann * att) {
+        const double rn = tip_.gap_rate, rt = tip_.slip_speed;
+        const double fn = (att * rn - ant * rt) / det, ft = (ann * rt - ant * rn) / det;
+        qd_ -= fn * w_ + ft * w2_;
+        return;
+      }
+    }
+    qd_ -= (tip_.gap_rate / ann) * w_;
   }
 
   void reinitialize() {
@@ -421,13 +437,15 @@ private:
   // found on the samples and refined by Brent between the best one's neighbours.
   StepOutcome contact_step(FilamentState& s, double t_stop) {
     StepOutcome out;
-    const bool constraint = law_.kind(s.phase) == PhaseKind::constraint;
+    phase_ = s.phase;  // a law may change the phase inside an episode (stick and slip)
+    const PhaseKind kind = law_.kind(s.phase);
+    const bool constraint = kind != PhaseKind::force, locked = kind == PhaseKind::locked;
     episode_ = s.episode;
     if (constraint) {
       t_ = s.t;
       q_ = s.q;
       qd_ = s.qd;
-      project(t_);
+      project(t_, locked);
       store(s);  // the projected state is the start of the step (and the last good one)
       reinitialize();
       physical(t_, x_, pq_, pqd_);
@@ -487,7 +505,7 @@ private:
     const LedgerValues total = ledger_of(xe);
     out.integrals.integral = constraint ? total : total - marks_;
     if (!constraint) marks_ = total;
-    if (constraint) project(t_event);
+    if (constraint) project(t_event, locked);
     if (!q_.allFinite() || !qd_.allFinite())
       return failed(FailureKind::non_finite, std::string("the ") + law_.name() + " contact state became non-finite");
     t_ = t_event;
@@ -533,7 +551,7 @@ private:
   std::unique_ptr<BeamWorkspace> ws_, ews_;
   TipKinematics tip_, etip_;
   State x_, xs_;
-  Eigen::VectorXd q_, qd_, force_, w_;
+  Eigen::VectorXd q_, qd_, force_, w_, w2_;
   Eigen::VectorXd pq_, pqd_, pa_;  // q, q̇, q̈ of a state being evaluated (rhs, root functions)
   std::optional<IntegratingFactor> factor_;  // opt_.integrating_factor
   double highest_hz_ = 0;                    // the highest linear mode [Hz] (0 without the factor)

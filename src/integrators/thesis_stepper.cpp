@@ -50,7 +50,7 @@ public:
         q1_(n_), qd1_(n_), xp_(n_), up_(n_), xn_(n_), un_(n_), x2_(n_), qstar_(n_), force_(n_), minv_(n_),
         damped_(system.beam.damped()) {}
 
-  StepperTraits traits() const override { return {Scheme::thesis, false, false}; }
+  StepperTraits traits() const override { return {Scheme::thesis, false, false, false}; }
 
   void begin_free(const FilamentState& s, FreeStart start) override {
     mode_ = start == FreeStart::separation ? Mode::separation_step : Mode::free;

@@ -91,6 +91,12 @@ nlohmann::json brush_summary_json(const BrushResult& result, const Config& confi
   j["steady_filaments"] = s.steady;
   j["not_steady_filaments"] = s.not_steady;
   j["failed_filaments"] = s.failed;
+  {
+    nlohmann::json list = nlohmann::json::array();
+    for (int i : s.failed_indices) list.push_back(i + 1);
+    j["failed_filament_list"] = list;
+  }
+  j["missing_force_fraction"] = number_or_null(s.missing_force_fraction);
   j["revolution_period_s"] = s.revolution_period_s;
   j["mean_normal_force_n"] = s.mean_normal_force_n;
   j["mean_tangential_force_n"] = s.mean_tangential_force_n;

@@ -90,6 +90,7 @@ std::vector<OutputFile> make_files() {
         number("max_tip_deflection_ratio", "1", "largest |y_t|/L"),
         number("section_distance", "1", "relative change of the section state from the previous revolution"),
         number("contact_time_s", "s", "time in sustained contact"),
+        number("stick_time_s", "s", "the part of it in which the tip stuck"),
         number("peak_normal_force_n", "N", "largest normal force"),
         number("q{i}_m", "m", "modal coordinate i at the revolution's end"),
         number("qd{i}_m_s", "m/s", "modal velocity i at the revolution's end")})

@@ -131,7 +131,8 @@ void append_revolution_line(std::string& out, const RevolutionRecord& r) {
       put(out, r.ledger[info.term]);
     }
   for (double v : {r.ledger.energy_change_j, r.ledger.residual(), r.mean_hub_torque_n_m, r.mean_hub_power_w,
-                   r.max_tip_deflection_ratio, r.section_distance, r.contact_time_s, r.peak_normal_force_n}) {
+                   r.max_tip_deflection_ratio, r.section_distance, r.contact_time_s, r.stick_time_s,
+                   r.peak_normal_force_n}) {
     out += ',';
     put(out, v);
   }
@@ -159,6 +160,7 @@ nlohmann::json summary_json(const PassResult& result, const Config& config, cons
   j["first_impact_deg"] = number_or_null(s.first_impact_deg);
   j["last_separation_deg"] = number_or_null(s.last_separation_deg);
   j["contact_time_s"] = s.contact_time_s;
+  j["stick_time_s"] = s.stick_time_s;
   j["peak_normal_force_n"] = s.peak_normal_force_n;
   j["mean_normal_force_n"] = s.mean_normal_force_n;
   j["binned_force"] = {{"bin_deg", s.binned_force.bin_deg},
@@ -189,6 +191,7 @@ nlohmann::json summary_json(const PassResult& result, const Config& config, cons
                            {"impacts", r.impacts},
                            {"contact_episodes", r.contact_episodes},
                            {"contact_time_s", r.contact_time_s},
+                           {"stick_time_s", r.stick_time_s},
                            {"peak_normal_force_n", r.peak_normal_force_n},
                            {"max_tip_deflection_ratio", r.max_tip_deflection_ratio},
                            {"energy_change_j", r.ledger.energy_change_j},

@@ -17,6 +17,7 @@ void ContactMetrics::note_force(double normal_force) {
 void ContactMetrics::step(const StepView& v) {
   if (v.phase == Phase::free) return;
   ctx_.result.summary.contact_time_s += v.t - v.t0;
+  if (v.phase == Phase::stick) ctx_.result.summary.stick_time_s += v.t - v.t0;
   normal_time_integral_ += v.integrals.integral[LedgerTerm::normal_impulse];
   note_force(std::max(v.load.normal_force, v.integrals.peak_normal_force));
 }
@@ -65,6 +66,7 @@ void ContactMetrics::open_revolution(double, const Eigen::VectorXd&, const Eigen
   mark_impacts_ = s.impacts;
   mark_episodes_ = s.contact_episodes;
   mark_contact_time_ = s.contact_time_s;
+  mark_stick_time_ = s.stick_time_s;
   rev_first_impact_deg_ = rev_last_separation_deg_ = NAN;
   rev_peak_force_ = 0.0;
   // The intervals of the revolutions kept (output.history_revolutions; the open one counts).
@@ -84,6 +86,7 @@ void ContactMetrics::close_revolution(double, const Eigen::VectorXd&, const Eige
   r.first_impact_deg = rev_first_impact_deg_;
   r.last_separation_deg = rev_last_separation_deg_;
   r.contact_time_s = s.contact_time_s - mark_contact_time_;
+  r.stick_time_s = s.stick_time_s - mark_stick_time_;
   r.peak_normal_force_n = rev_peak_force_;
 }
 

@@ -1,5 +1,5 @@
 // The contact metrics of a pass and of each revolution (SPEC §7, §11): impacts, the first touch and
-// the last separation, contact episodes and their intervals, contact time, the largest normal force
+// the last separation, contact episodes and their intervals, contact and stick time, the largest normal force
 // and the mean one.
 #pragma once
 
@@ -35,7 +35,7 @@ private:
   // counts at its start.
   double rev_first_impact_deg_ = NAN, rev_last_separation_deg_ = NAN, rev_peak_force_ = 0;
   int mark_impacts_ = 0, mark_episodes_ = 0;
-  double mark_contact_time_ = 0;
+  double mark_contact_time_ = 0, mark_stick_time_ = 0;
 };
 
 }  // namespace rotbeam

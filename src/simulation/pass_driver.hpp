@@ -32,6 +32,7 @@ public:
   TipKinematics& tip() override { return tip_; }
   Eigen::VectorXd& scratch() override { return scratch_; }
   bool lifts_off_on_positive_multiplier() const override { return traits_.lifts_off_on_positive_multiplier; }
+  bool holds_stick() const override { return traits_.holds_stick; }
   bool impacts_exhausted() override;
   void impact(const Eigen::VectorXd& qd_before, const ImpactResult& result) override;
   void rebound() override;

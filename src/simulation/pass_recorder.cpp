@@ -133,7 +133,9 @@ void PassRecorder::impact(double t, const Eigen::VectorXd& q, const Eigen::Vecto
   e.restitution = r.restitution;
   e.impulse = r.impulse;
   e.hub_work = v.hub_work;
-  e.detail = r.restitution == 0.0 ? "plastic" : "";
+  e.detail = r.tangential            ? "tangential: an impact without collision at a Painlevé point, the slip stopped"
+             : r.restitution == 0.0 ? "plastic"
+                                    : "";
   emit(e);
   sampler_.after_impact(v);
   last_t_ = t;

@@ -154,6 +154,35 @@ FilamentSteadyState run_distinct(const Config& config, const std::vector<const B
   return s;
 }
 
+// The share of the mean normal force the failed filaments are estimated to carry (BrushSummary::
+// missing_force_fraction): each failed filament counted as the finished one of the nearest depth
+// fraction (the force of a filament follows its reach first).
+double missing_force_fraction(const BrushResult& result) {
+  double finished = 0, missing = 0;
+  bool any_failed = false, any_finished = false;
+  for (const BrushFilament& f : result.filaments) {
+    const FilamentSteadyState& d = result.distinct[f.group];
+    if (!d.reaches) continue;
+    if (d.ran) {
+      finished += d.mean_normal_force_n;
+      any_finished = true;
+      continue;
+    }
+    any_failed = true;
+    const BrushFilament* nearest = nullptr;
+    for (const BrushFilament& g : result.filaments) {
+      const FilamentSteadyState& e = result.distinct[g.group];
+      if (e.reaches && e.ran &&
+          (!nearest || std::abs(g.depth_fraction - f.depth_fraction) < std::abs(nearest->depth_fraction - f.depth_fraction)))
+        nearest = &g;
+    }
+    if (nearest) missing += result.distinct[nearest->group].mean_normal_force_n;
+  }
+  if (!any_failed) return 0.0;
+  if (!any_finished) return NAN;
+  return missing + finished > 0 ? missing / (missing + finished) : 0.0;
+}
+
 }  // namespace
 
 std::vector<BrushFilament> brush_filaments(const Config& config) {
@@ -288,6 +317,7 @@ BrushResult run_brush(const Config& config, const BrushOptions& options) {
     ++s.reaching;
     if (!d.ran) {
       ++s.failed;
+      s.failed_indices.push_back(f.index);
       if (s.failed_filament < 0) {
         s.failed_filament = f.index;
         if (d.failure)
@@ -313,6 +343,7 @@ BrushResult run_brush(const Config& config, const BrushOptions& options) {
     }
   }
   s.mean_hub_power_w = s.mean_hub_torque_n_m * omega;
+  s.missing_force_fraction = missing_force_fraction(result);
   if (std::isfinite(s.contact_zone_from_deg)) s.contact_zone_deg = s.contact_zone_to_deg - s.contact_zone_from_deg;
   double along_min = INFINITY, along_max = -INFINITY;
   for (const FilamentSteadyState& d : result.distinct)

@@ -25,11 +25,31 @@ inline std::string painleve_message(double a, double b, double c) {
          ")";
 }
 
+/// Painlevé's paradox that the rigid law cannot resolve (docs/contact.md, "Painlevé's paradox"): why,
+/// and what to change.
+inline std::string painleve_unresolved_message(double a, double b, double c, const std::string& why) {
+  return painleve_message(a, b, c) + ": " + why +
+         "; contact.model = \"hertz\" resolves it with a compliant contact, a lower surface.friction avoids it";
+}
+
 /// A stick: V_t = 0 and the tangential force needed lies inside the friction cone.
 inline std::string stick_message(const SlipDecision& s, double mu_eff) {
   return "the tip sticks (V_t = 0 and the tangential force needed, " + short_number(s.stick_tangential) +
          " N, is within the friction cone μF_n = " + short_number(mu_eff * std::abs(s.stick_normal)) +
-         " N); the schemes do not hold a stick (SPEC §4: stop with a diagnostic)";
+         " N); the thesis scheme does not hold a stick: simulation.scheme = \"adaptive\" does (docs/contact.md)";
+}
+
+/// The detail of a stick_start event.
+inline std::string stick_start_message(const SlipDecision& s, double mu_eff) {
+  return "V_t = 0 and the tangential force needed, " + short_number(s.stick_tangential) +
+         " N, lies within the friction cone μF_n = " + short_number(mu_eff * std::abs(s.stick_normal)) +
+         " N: the tip sticks";
+}
+
+/// The detail of a stick_end event at which the tip slides in direction s_t.
+inline std::string stick_end_message(double tangential, double direction) {
+  return "the tangential force needed reached μF_n = " + short_number(std::abs(tangential)) +
+         " N: the tip slides toward " + (direction > 0 ? "+t" : "−t");
 }
 
 /// V_t passed through 0 in contact and the tip now slides the other way.
