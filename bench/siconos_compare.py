@@ -8,7 +8,7 @@ What it measures
       * by Siconos 4.4 (siconos.kernel): Moreau-Jean time stepping (theta = 0.5, fixed step h),
         NewtonImpactNSL(e = 0), one frictionless unilateral constraint y = d - X_tip >= 0
         (LagrangianRheonomousR, h(q, t)), LCP at velocity level. The model (M(q) and the
-        non-linear forces of SPEC section 3) is written here in numpy, independently of rotbeam,
+        non-linear forces of docs/model.md §3) is written here in numpy, independently of rotbeam,
         and handed to Siconos as Python overrides of LagrangianDS (computeMass, computeFInt,
         computeFGyr and their exact analytic Jacobians);
       * by the rotbeam CLI (adaptive event-driven scheme, defaults) and two variants
@@ -57,7 +57,7 @@ VARIANTS = [("rotbeam (adaptive, defaults)", []),
             ("rotbeam end_when_clear=true", ["--set", "simulation.end_when_clear=true"])]
 
 
-# ---------------------------------------------------------------- modal basis (SPEC section 2)
+# ---------------------------------------------------------------- modal basis (docs/model.md §2)
 def cantilever_roots(n):
     """Roots of cos r cosh r = -1, by Newton on f(r) = cos r + sech r from (2i - 1) pi / 2."""
     roots = []
@@ -99,7 +99,7 @@ def gauss(a, b, panels, k=20):
 
 
 class Model:
-    """The filament of SPEC sections 2-4 in numpy: M(q) qdd + fGyr(q, qd) + fInt(q) = Q."""
+    """The filament of docs/model.md §2–§4 in numpy: M(q) qdd + fGyr(q, qd) + fInt(q) = Q."""
 
     def __init__(self, n=NMODES, rpm=RPM, depth=DEPTH):
         self.n = n
@@ -113,7 +113,7 @@ class Model:
         panels = int(math.ceil(4 * r[-1] / 12)) + 4
         xs, ws = gauss(0.0, 1.0, panels)
         S, S1, S2 = shapes(xs, r)
-        # normalisation check (SPEC section 2): int S_i S_j = delta_ij, int S''_i S''_j = r^4 delta_ij
+        # normalisation check (docs/model.md §2): int S_i S_j = delta_ij, int S''_i S''_j = r^4 delta_ij
         self.orth_err = max(np.abs((S * ws[:, None]).T @ S - np.eye(n)).max(),
                             np.abs((S2 * ws[:, None]).T @ S2 / r[None, :] ** 4 - np.eye(n)).max())
         # ISP(xi_g) = int_0^xi_g S' S'^T, by Gauss on [0, xi_g] (same composite rule, scaled)
@@ -195,7 +195,7 @@ class Model:
         M, fg, fi = self.evaluate(q, v)[:3]
         return np.linalg.solve(M, -fg - fi)
 
-    # --- constraint y = d - X_tip >= 0 (y = -C of SPEC section 4)
+    # --- constraint y = d - X_tip >= 0 (y = -C of docs/model.md §4)
     def tip(self, q, t):
         th = THETA0 + self.omega * t
         xt = RH + L - q @ self.isp1 @ q / (2 * L)

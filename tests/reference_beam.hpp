@@ -1,7 +1,7 @@
 // An independent route to the filament's energies for the tests: x(ξ), y(ξ) and their rates are
 // evaluated pointwise on a fine quadrature grid (Boost's 30-point Gauss–Legendre, composite),
 // with ISP(ξ) integrated afresh at each node, and the energies are summed directly from
-// SPEC §3's definitions. Nothing here uses the library's precomputed tensors or contractions.
+// docs/model.md §3's definitions. Nothing here uses the library's precomputed tensors or contractions.
 #pragma once
 
 #include "rotbeam/elastica_beam.hpp"
@@ -32,7 +32,7 @@ private:
   std::vector<Eigen::MatrixXd> isp_, p_; // ISP(ξ), P(ξ) at the nodes
 };
 
-/// The elastica's energies by another route (SPEC §11): at each node of a composite 30-point
+/// The elastica's energies by another route (docs/model.md §11): at each node of a composite 30-point
 /// Gauss–Legendre rule the position r(ξ) = (r_h + L∫₀^ξ cos φ, L∫₀^ξ sin φ) and its rate are
 /// integrated afresh with a rule of their own on [0, ξ], from the modal basis (not from the model's
 /// nodes or running-integral matrix); U = ½(EI/L³)∫(Σ q_i S_i'')² dξ by quadrature (not from r_i⁴).

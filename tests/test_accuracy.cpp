@@ -1,4 +1,4 @@
-// Right in every case, not only the base case (SPEC §6, §7, §10): at the default tolerance the passes
+// Right in every case, not only the base case (docs/model.md §6, §7, §10): at the default tolerance the passes
 // match a tight-tolerance run on cases other than the base case; the largest normal force is found
 // at the start of an episode and inside steps; impacts after short rebound flights are located to a
 // picosecond; every contact episode starts with a history row; the inertial energy ledger closes.
@@ -74,7 +74,7 @@ TEST(Accuracy, PeakForceAtTheStartOfAnEpisodeAgreesWithAnIndependentSolution) {
 }
 
 TEST(Accuracy, SpecTenRunToSixDigits) {
-  // SPEC §10 (μ = 0, all impacts plastic, 5 modes), the adaptive scheme against an independent
+  // docs/model.md §10 (μ = 0, all impacts plastic, 5 modes), the adaptive scheme against an independent
   // solution's 7-digit reference: 9.9594977°, 2.5086764 N, 7 impacts, 5 episodes (1e-6 relative).
   const PassResult r = run({"surface.friction=0", "impact.plastic_below_m_s=10"});
   ASSERT_FALSE(r.failure);

@@ -1,4 +1,4 @@
-// The adaptive event-driven scheme (SPEC §6): convergence in tolerance, event location, the Jacobi
+// The adaptive event-driven scheme (docs/model.md §6): convergence in tolerance, event location, the Jacobi
 // integral, and the thesis scheme's error against it.
 #include "rotbeam/case.hpp"
 #include "rotbeam/convergence.hpp"

@@ -1,4 +1,4 @@
-// The rotbeam binary as a user runs it: outputs, JSON field names (SPEC §7), exit codes.
+// The rotbeam binary as a user runs it: outputs, JSON field names (docs/model.md §7), exit codes.
 #include "rotbeam/config.hpp"
 
 #include <algorithm>
@@ -155,7 +155,7 @@ TEST(Cli, RunWritesHistoryEventsAndSummary) {
   EXPECT_NEAR(j["first_impact_deg"].get<double>(), -8.1096, 1e-4);
   EXPECT_GT(j["impacts"].get<int>(), 1);
   EXPECT_GT(j["max_tip_deflection_ratio"].get<double>(), 0.1);
-  EXPECT_FALSE(j["warnings"].empty());  // the validity warning of SPEC §10
+  EXPECT_FALSE(j["warnings"].empty());  // the validity warning of docs/model.md §10
   const std::string history = slurp(dir + "/history.csv");
   EXPECT_EQ(history.rfind("t_s,theta_deg,phase,x_tip_m,y_tip_m,gap_m,vx_m_s,vy_m_s,normal_force_n,friction_force_n,"
                           "lambda_n,q1_m,",
@@ -218,7 +218,7 @@ TEST(Cli, ConvergePrintsItsTableAndJson) {
 }
 
 TEST(Cli, WarningsAreEventsToo) {
-  // SPEC §7: warnings are events; the base case passes the validity threshold (|y_t|/L > 0.1).
+  // docs/model.md §7: warnings are events; the base case passes the validity threshold (|y_t|/L > 0.1).
   const std::string dir = ::testing::TempDir() + "rotbeam_run_warn_" + std::to_string(getpid());
   ASSERT_EQ(run("run --set output.interval_s=1e-3 -o " + dir).status, 0);
   const std::string events = slurp(dir + "/events.csv");

@@ -1,4 +1,4 @@
-// The compliant (Hertz) contact law (SPEC §11 "Compliant contact", docs/contact.md): the
+// The compliant (Hertz) contact law (docs/model.md §11 "Compliant contact", docs/contact.md): the
 // Hunt–Crossley damping against an independent integration of the single-mass impact, the
 // stiffness formula, the energy ledger with the contact's dissipation on several cases and
 // surfaces, over revolutions, the convergence of the peak force in the number of modes, the
@@ -238,7 +238,7 @@ TEST(Compliant, TheFirstContactConvergesInTheNumberOfModes) {
   // n = 10 / 16 / 20 / 30 / 40, impulse 3.3678 / 3.3345 / 3.3234 / 3.32143 / 3.32139e-4 N s: the
   // impulse has settled by n = 16, the peak needs the modes up to the Hertz contact's frequency
   // (n ≈ 30). Bounds: impulse n = 16 vs 20 within 0.5 %; peak n = 16 vs 20 within 15 %, n = 30 vs 40
-  // within 2 %. The rigid law's first impact has no force to converge (an impulse; SPEC §10).
+  // within 2 %. The rigid law's first impact has no force to converge (an impulse; docs/model.md §10).
   auto first_contact = [](int n) {
     const PassResult r = run({"contact.model=hertz", "surface.friction=0", "simulation.end_angle_deg=-7.9",
                               "beam.modes=" + std::to_string(n)});

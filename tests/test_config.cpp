@@ -1,4 +1,4 @@
-// Configuration (SPEC §9): defaults, overrides, and one-line errors that name the key and value.
+// Configuration (docs/model.md §9): defaults, overrides, and one-line errors that name the key and value.
 #include "rotbeam/config.hpp"
 
 #include <fstream>

@@ -1,4 +1,4 @@
-// Sustained contact (SPEC §4): the multiplier equation, the static check of SPEC §10, and the
+// Sustained contact (docs/model.md §4): the multiplier equation, the static check of docs/model.md §10, and the
 // invariants of every converged corrector step of a pass.
 #include "rotbeam/dynamics.hpp"
 #include "rotbeam/pass.hpp"
@@ -36,7 +36,7 @@ TEST(Multiplier, BothSignsTriedAndPainleveDetected) {
 }
 
 TEST(Contact, StaticTipLoadConvergesToTheBeamFormula) {
-  // SPEC §10: no spin, the tip held at a deflection δ by the surface; the multiplier must approach
+  // docs/model.md §10: no spin, the tip held at a deflection δ by the surface; the multiplier must approach
   // the static cantilever force 3EIδ/L³ as n grows (assumed modes converge from the stiff side:
   // Σ 4/r_i⁴ → 1/3). Measured ratio 1.00001 at n = 20; required within 2e-5 there and monotone.
   // The thesis's |λ|·|∇C| is shown to be several times too large.
@@ -118,7 +118,7 @@ TEST(ThesisPass, EveryConvergedContactStepSatisfiesTheConstraints) {
 }
 
 TEST(ThesisPass, MatchesTheIndependentRunsOfSpec10) {
-  // SPEC §10 (μ = 0, all impacts plastic): 5 modes ~5 contact episodes, peak ≈ 2.5 N; 10 modes ~20
+  // docs/model.md §10 (μ = 0, all impacts plastic): 5 modes ~5 contact episodes, peak ≈ 2.5 N; 10 modes ~20
   // episodes, peak ≈ 5.7 N; the last separation ≈ 10° for both. Tolerances: counts ±2 (±5 at 10 modes),
   // peaks ±10 %, angle ±0.5°.
   const PassResult five = base_pass(550, 5, 0.0, 10.0, 1e-4);
@@ -131,7 +131,7 @@ TEST(ThesisPass, MatchesTheIndependentRunsOfSpec10) {
   EXPECT_NEAR(ten.summary.peak_normal_force_n, 5.7, 0.57);
   EXPECT_NEAR(five.summary.last_separation_deg, 10.0, 0.5);
   EXPECT_NEAR(ten.summary.last_separation_deg, 10.0, 0.5);
-  // The plastic straight-beam impact lifts off at once with λ ≈ +1.7 N (SPEC §10).
+  // The plastic straight-beam impact lifts off at once with λ ≈ +1.7 N (docs/model.md §10).
   ASSERT_GE(five.events.size(), 2u);
   EXPECT_EQ(five.events[1].kind, EventKind::lift_off);
   EXPECT_NE(five.events[1].detail.find("1.69"), std::string::npos) << five.events[1].detail;

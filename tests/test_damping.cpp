@@ -1,4 +1,4 @@
-// Modal damping (SPEC §11): C = M0 Φ diag(2ζ_iΩ_i) Φᵀ M0 on the linear modes at the hub speed.
+// Modal damping (docs/model.md §11): C = M0 Φ diag(2ζ_iΩ_i) Φᵀ M0 on the linear modes at the hub speed.
 // Checked against the closed-form decay of a damped linear oscillator at small amplitude, with the
 // modes computed here by an independent route (the generalised eigenproblem of K and M(0)); the
 // damping work against the energy ledger in free flight and through contact, with both schemes.

@@ -1,4 +1,4 @@
-// Every term of the equations of motion (SPEC §3) against numerical differentiation of the
+// Every term of the equations of motion (docs/model.md §3) against numerical differentiation of the
 // Lagrangian evaluated by direct quadrature (tests/reference_beam.*).
 //
 // For L(q, q̇) the Lagrange equations read M q̈ + Ψ = 0 with
@@ -145,7 +145,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 }  // namespace
 
-// The elastica (SPEC §11) by the same route: its T and U from ReferenceElastica (positions
+// The elastica (docs/model.md §11) by the same route: its T and U from ReferenceElastica (positions
 // integrated afresh at every node from the modal basis), differentiated numerically. Its L is not
 // a polynomial, so the extrapolated difference leaves O(δ⁴) ≈ (2e-5/0.06)⁴ ≈ 1e-14 relative;
 // round-off ~1e-16·T/δ. Each rotation term is isolated by the model's switches:

@@ -1,4 +1,4 @@
-// The geometrically exact filament (SPEC §11) and the rotation switches: the static large
+// The geometrically exact filament (docs/model.md §11) and the rotation switches: the static large
 // deflection against the Bisshopp–Drucker elastica, computed here by shooting; the small-amplitude
 // limit against the thesis's model; the linearisation against differences of Ψ; the non-rotating
 // closed forms with the switches off; the Jacobi integral in free flight; the tip's derivatives;
@@ -145,7 +145,7 @@ TEST(StaticEquilibrium, SpinningStiffensAndTheCentrifugalSwitchRemovesIt) {
 // --- the small-amplitude limit ---------------------------------------------------------------------
 
 TEST(ElasticaLinearisation, FrequenciesEqualTheThesisModelsAtEverySpeed) {
-  // Both linearisations are the same operator (SPEC §11: at small amplitude the elastica is §3);
+  // Both linearisations are the same operator (docs/model.md §11: at small amplitude the elastica is §3);
   // each is computed by its own quadrature, good to ~1e-13. Tolerance 1e-8 relative (the issue's).
   for (int n : {3, 5, 12})
     for (double rpm : {0.0, 550.0, 1000.0, 2000.0, 3000.0}) {

@@ -1,4 +1,4 @@
-// Energies and hub angular momentum (SPEC §3, §7) against direct quadrature (tests/reference_beam.*).
+// Energies and hub angular momentum (docs/model.md §3, §7) against direct quadrature (tests/reference_beam.*).
 #include "reference_beam.hpp"
 #include "rotbeam/energy.hpp"
 

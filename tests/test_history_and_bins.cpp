@@ -1,4 +1,4 @@
-// What a pass records beside its events (SPEC §7): the rigid turn drawn row by row, rows on the
+// What a pass records beside its events (docs/model.md §7): the rigid turn drawn row by row, rows on the
 // near-surface grid taken from the stepper's dense output, and the force on the surface in
 // hub-angle bins (force_bins.hpp), each checked against an independent route.
 #include "rotbeam/case.hpp"

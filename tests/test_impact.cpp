@@ -1,4 +1,4 @@
-// The impact law (SPEC §5): Ċ⁺ = −eĊ⁻, the energy lost relative to the moving constraint, the
+// The impact law (docs/model.md §5): Ċ⁺ = −eĊ⁻, the energy lost relative to the moving constraint, the
 // change of T2, and the restitution law with its cap, constant and plastic options.
 #include "reference_beam.hpp"
 #include "rotbeam/energy.hpp"
@@ -13,7 +13,7 @@ TEST(Restitution, YigitOnTheNormalSpeedWithCapAndOptions) {
   ImpactLaw law;  // Yigit, cap 1, normal speed
   law.plastic_below_m_s = 0.0;
   EXPECT_NEAR(restitution(law, 1.0319, 5.0), 0.501 * std::pow(1.0319, -0.25), 1e-15);
-  EXPECT_NEAR(restitution(law, 1.0319, 5.0), 0.4971, 5e-5);  // SPEC §5 worked value
+  EXPECT_NEAR(restitution(law, 1.0319, 5.0), 0.4971, 5e-5);  // docs/model.md §5 worked value
   EXPECT_EQ(restitution(law, 0.01, 5.0), 1.0);             // e > 1 below 0.0634 m/s: capped
   law.cap = 0.8;
   EXPECT_EQ(restitution(law, 0.1, 0.1), 0.8);
@@ -109,7 +109,7 @@ struct StraightBeamImpact {
 }  // namespace
 
 TEST(Impact, RigidStartImpactSetsTheBeamVibrating) {
-  // q̇⁻ = 0 at the straight-beam impact: T2 jumps from 0 to ½P²a (SPEC §5).
+  // q̇⁻ = 0 at the straight-beam impact: T2 jumps from 0 to ½P²a (docs/model.md §5).
   StraightBeamImpact s;
   const ImpactResult r = s.apply(ImpactLaw{});
   const double t2 = evaluate_energy(s.model, s.q, s.qd, s.ws).t2;
@@ -119,7 +119,7 @@ TEST(Impact, RigidStartImpactSetsTheBeamVibrating) {
 }
 
 TEST(Impact, PlasticStraightBeamImpactStopsTheTip) {
-  // SPEC §10: at q = 0 the tip can only move along the beam's local y axis, so e = 0 leaves
+  // docs/model.md §10: at q = 0 the tip can only move along the beam's local y axis, so e = 0 leaves
   // V_X = V_Y = 0 (to round-off of ω(r_h + L) ≈ 0.7 m/s).
   StraightBeamImpact s;
   ImpactLaw law;

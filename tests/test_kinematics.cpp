@@ -1,4 +1,4 @@
-// Tip kinematics and the constraint (SPEC §4) against finite differences of the gap function.
+// Tip kinematics and the constraint (docs/model.md §4) against finite differences of the gap function.
 #include "reference_beam.hpp"
 #include "rotbeam/dynamics.hpp"
 #include "rotbeam/kinematics.hpp"

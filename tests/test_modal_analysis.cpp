@@ -1,4 +1,4 @@
-// Linearised modal analysis (SPEC §3): exact at rest, and at speed convergent in the number of
+// Linearised modal analysis (docs/model.md §3): exact at rest, and at speed convergent in the number of
 // modes toward an independent finite-element solution of the continuous rotating-beam problem
 //   EI w'''' − (T(s) w')' − ρAω² w = ρA Ω² w,  T(s) = ρAω² ∫_s^L (r_h + u) du,  clamped–free.
 #include "rotbeam/modal_analysis.hpp"

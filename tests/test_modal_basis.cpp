@@ -1,4 +1,4 @@
-// The cantilever basis (SPEC §2): roots, boundary conditions, the beam ODE, orthonormality.
+// The cantilever basis (docs/model.md §2): roots, boundary conditions, the beam ODE, orthonormality.
 #include "rotbeam/modal_basis.hpp"
 
 #include <boost/math/quadrature/gauss.hpp>

@@ -1,4 +1,4 @@
-// The precomputed ξ-integrals (SPEC §3): convergence of the composite rule and spot checks
+// The precomputed ξ-integrals (docs/model.md §3): convergence of the composite rule and spot checks
 // against adaptive quadrature.
 #include "rotbeam/modal_integrals.hpp"
 

@@ -1,4 +1,4 @@
-// Many revolutions (SPEC §11): the per-revolution energy ledger, the section map being a function
+// Many revolutions (docs/model.md §11): the per-revolution energy ledger, the section map being a function
 // of the section state alone (so that a run of N revolutions equals N one-revolution runs chained),
 // the steady state reached with damping and its independence of the start, the windowed history,
 // and the configuration's rules.

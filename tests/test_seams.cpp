@@ -167,7 +167,7 @@ TEST(HubTorque, ClosedFormAngularMomentumRateMatchesDifferencesOfHz) {
 
 TEST(Driver, TheBounceIsDecidedByTheRestitutionNotByTheSignOfRoundOff) {
   // After a plastic impact Ċ⁺ is zero only to round-off (here −2.8e-16 m/s after an approach at
-  // 1.5e-4 m/s, as in the 10-mode thesis pass of SPEC §10): contact must follow, not a bounce.
+  // 1.5e-4 m/s, as in the 10-mode thesis pass of docs/model.md §10): contact must follow, not a bounce.
   ImpactResult plastic;
   plastic.vx_before = 1.5e-4;
   plastic.vx_after = -2.8e-16;
@@ -200,9 +200,9 @@ PassResult pass_of(int n, double rpm, double mu, Scheme scheme, double plastic_b
 
 TEST(Driver, EveryPlasticImpactIsFollowedByContactOrLiftOff) {
   // e = 0 leaves Ċ⁺ = 0: the tip cannot fly off, so at the same instant the driver must either start
-  // sustained contact or find that the tip lifts off (SPEC §5). Passes with hundreds of plastic
+  // sustained contact or find that the tip lifts off (docs/model.md §5). Passes with hundreds of plastic
   // impacts, some at approach speeds of ~1e-4 m/s where the recomputed Ċ⁺ is only zero to round-off
-  // (the 10-mode thesis pass of SPEC §10 has one at θ = 9.108°).
+  // (the 10-mode thesis pass of docs/model.md §10 has one at θ = 9.108°).
   int checked = 0;
   for (Scheme scheme : {Scheme::thesis, Scheme::adaptive})
     for (int n : {5, 10}) {

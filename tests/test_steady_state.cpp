@@ -1,4 +1,4 @@
-// The periodic steady state (SPEC §11, docs/model.md "Many revolutions"): shooting (Newton on the
+// The periodic steady state (docs/model.md §11, docs/model.md "Many revolutions"): shooting (Newton on the
 // one-revolution map) against brute force, the Floquet multipliers against the decay of a small
 // perturbation, and the report of a search that does not converge.
 #include "rotbeam/case.hpp"

@@ -1,4 +1,4 @@
-// Thesis Table 5-3 (SPEC §8): the first impact at 2 % depth, 550 and 3000 rpm, rigid and
+// Thesis Table 5-3 (docs/model.md §8): the first impact at 2 % depth, 550 and 3000 rpm, rigid and
 // flexible starts, with 5 modes and e from the normal speed.
 //
 // The thesis printed V_X(−0) and V_X(+0) to 4 decimals and evidently derived ΔV_X and the ratio
@@ -85,7 +85,7 @@ TEST(Table53, RigidRowsFollowTheClosedForm) {
 }
 
 TEST(Table53, ImpactAnglesOfSpec10) {
-  // SPEC §10: 550 rpm rigid at θ = −8.1096°, t = 0.0248153 s; q̇1 = 2 at θ = −10.345°.
+  // docs/model.md §10: 550 rpm rigid at θ = −8.1096°, t = 0.0248153 s; q̇1 = 2 at θ = −10.345°.
   const FirstImpactResult rigid = run(550, 0.0);
   EXPECT_NEAR(rigid.theta * 180 / M_PI, -8.1096, 0.5e-4);
   EXPECT_NEAR(rigid.t, 0.0248153, 0.5e-7);
@@ -94,7 +94,7 @@ TEST(Table53, ImpactAnglesOfSpec10) {
 }
 
 TEST(Table53, TenModesChangeVxByLessThan2e5) {
-  // SPEC §10: going from 5 to 10 modes changes V_X by < 2e-5 m/s.
+  // docs/model.md §10: going from 5 to 10 modes changes V_X by < 2e-5 m/s.
   for (const Row& row : kTable) {
     if (row.qd1 == 0.0) continue;
     const FirstImpactResult a = run(row.rpm, row.qd1, 5), b = run(row.rpm, row.qd1, 10);

@@ -81,6 +81,7 @@ struct AnimateOptions {
   std::optional<int> frames;
   std::optional<double> frames_per_degree, zoom_mm;
   double magnify = 1.0, fps = 20.0;
+  bool quiet = false;
 };
 }  // namespace
 
@@ -104,6 +105,7 @@ Command add_animate_command(CLI::App& app) {
   sub->add_option("--magnify", opts->magnify, "Draw the deflection this many times (default 1: to scale)")
       ->check(number_in(1e-3, 1e6, false));
   sub->add_option("--fps", opts->fps, "Frames per second of the file (default 20)")->check(number_in(0.1, 100.0, false));
+  sub->add_flag("--quiet", opts->quiet, "No frame counter and no `wrote` lines (notes and errors are still said)");
   return [opts] {
     namespace fs = std::filesystem;
     std::error_code ec;
@@ -132,6 +134,7 @@ Command add_animate_command(CLI::App& app) {
     if (!opts->window.empty()) args.push_back("--window=" + opts->window);
     if (opts->zoom_mm) args.insert(args.end(), {"--zoom", number_text(*opts->zoom_mm)});
     args.insert(args.end(), {"--magnify", number_text(opts->magnify), "--fps", number_text(opts->fps)});
+    if (opts->quiet) args.push_back("--quiet");
     return run_python_module("rotbeam.animate", args);
   };
 }

@@ -1,4 +1,4 @@
-// `rotbeam converge`: a case over a ladder of tolerances, thesis steps and mode counts (SPEC §10).
+// `rotbeam converge`: a case over a ladder of tolerances, thesis steps and mode counts (docs/model.md §10).
 #include "commands.hpp"
 #include "common.hpp"
 

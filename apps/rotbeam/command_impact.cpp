@@ -1,4 +1,4 @@
-// `rotbeam impact`: the first impact of a pass — the Table 5-3 quantities (SPEC §7, §8).
+// `rotbeam impact`: the first impact of a pass — the Table 5-3 quantities (docs/model.md §7, §8).
 #include "commands.hpp"
 #include "common.hpp"
 

@@ -1,4 +1,4 @@
-// `rotbeam modes`: natural frequencies of the spinning filament versus hub speed (SPEC §3, §9).
+// `rotbeam modes`: natural frequencies of the spinning filament versus hub speed (docs/model.md §3, §9).
 #include "commands.hpp"
 #include "common.hpp"
 
@@ -166,7 +166,7 @@ Command add_modes_command(CLI::App& app) {
                   "Speeds A:B:N (N points from A to B rpm) or one speed; default: 0, the Table 5-2 speeds and the case's speed")
       ->check(non_empty_list("0:3000:7 or 550"));
   sub->add_flag("--json", opts->json, "Print {\"speeds_rpm\": [...], \"frequencies_hz\": [[...], ...]}");
-  sub->add_option("--csv", opts->csv_path, "Also write the table to this CSV file")->check(non_empty_path());
+  sub->add_option("--csv", opts->csv_path, "Write the table to this CSV file instead of printing it")->check(non_empty_path());
   sub->add_option("--plot", opts->plot_path, "Draw a Campbell diagram (with engine-order lines) into this PNG")
       ->check(non_empty_path());
   return [opts] { return run_modes(*opts); };

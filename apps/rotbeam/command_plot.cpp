@@ -18,8 +18,8 @@ struct PlotOptions {
 
 Command add_plot_command(CLI::App& app) {
   auto opts = std::make_shared<PlotOptions>();
-  CLI::App* sub = app.add_subcommand("plot", "Write the PNG pictures of a run folder or a sweep folder (matplotlib)");
-  sub->add_option("folder", opts->folder, "A folder written by `rotbeam run` or `rotbeam sweep`")->required();
+  CLI::App* sub = app.add_subcommand("plot", "Write the PNG pictures of a run, sweep or brush folder (matplotlib)");
+  sub->add_option("folder", opts->folder, "A folder written by `rotbeam run`, `rotbeam sweep`, `rotbeam merge` or `rotbeam brush`")->required();
   sub->add_option("-o,--output", opts->output, "Where to write the PNGs (default: the folder)")->check(non_empty_path());
   sub->add_flag("--cases", opts->cases, "For a sweep, also the pictures of every case");
   return [opts] {

@@ -1,4 +1,4 @@
-// `rotbeam run`: a whole pass through contact (SPEC §6, §7, §9).
+// `rotbeam run`: a whole pass through contact (docs/model.md §6, §7, §9).
 #include "commands.hpp"
 #include "common.hpp"
 

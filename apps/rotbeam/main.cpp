@@ -1,4 +1,4 @@
-// rotbeam: simulator of a flexible filament on a spinning hub striking a flat rigid surface.
+// rotbeam: simulator of a flexible filament on a spinning hub striking a rigid surface.
 #include "commands.hpp"
 #include "common.hpp"
 
@@ -32,7 +32,8 @@ int main(int argc, char** argv) {
   // A reader that stops reading (`| head -1`) is not an error: instead of dying by SIGPIPE (exit
   // 141), the writes fail and the end below says nothing of it.
   std::signal(SIGPIPE, SIG_IGN);
-  CLI::App app{"rotbeam: a flexible filament on a spinning hub whose tip strikes and rubs a flat rigid surface\n"
+  CLI::App app{"rotbeam: a flexible filament on a spinning hub whose tip strikes and rubs a rigid surface (a plane, a\n"
+               "cylinder or a casing), alone or as a brush\n"
                "(assumed modes, momentum-balance impacts, Lagrange-multiplier contact with Coulomb friction)"};
   app.name("rotbeam");
   app.require_subcommand(1);

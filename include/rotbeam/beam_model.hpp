@@ -1,5 +1,5 @@
 // The beam-model seam: what the contact algorithms, the steppers and the outputs need from a
-// theory of the filament on its spinning hub (SPEC §2–§3, §7). A beam model is immutable and may
+// theory of the filament on its spinning hub (docs/model.md §2–§3, §7). A beam model is immutable and may
 // be shared by any number of passes and threads; its scratch space is a BeamWorkspace made by the
 // model itself (one per thread, reused by every call, nothing allocated per call).
 //
@@ -14,10 +14,10 @@
 
 namespace rotbeam {
 
-/// θ0 unless set: the filament starts along −Y (SPEC §1, §11) [deg].
+/// θ0 unless set: the filament starts along −Y (docs/model.md §1, §11) [deg].
 inline constexpr double kDefaultStartAngleDeg = -90.0;
 
-/// The hub's rigid rotation: θ(t) = θ0 + ω t, never wrapped (SPEC §1, §11).
+/// The hub's rigid rotation: θ(t) = θ0 + ω t, never wrapped (docs/model.md §1, §11).
 struct HubMotion {
   double omega = 0;   // ω [rad/s]
   double theta0 = 0;  // θ0 [rad]
@@ -53,7 +53,7 @@ struct HubFrameTip {
   double x_quadratic = 0, y_quadratic = 0;  // [m/s²]
 };
 
-/// The equations of motion linearised about the straight filament q = 0 (SPEC §3):
+/// The equations of motion linearised about the straight filament q = 0 (docs/model.md §3):
 /// M0 q̈ + C q̇ + K q = 0, with M0 = M(0) [kg], K the bending plus linear centrifugal stiffness [N/m]
 /// and C the beam's own damping [kg/s] (zero when undamped). G(0) = 0, so there is no gyroscopic
 /// term. The modal analysis and the integrating factor of the adaptive scheme start from it.
@@ -61,7 +61,7 @@ struct Linearization {
   Eigen::MatrixXd mass, stiffness, damping;
 };
 
-/// Energies and hub angular momentum of the filament at (q, q̇) (SPEC §3, §7). All in joules
+/// Energies and hub angular momentum of the filament at (q, q̇) (docs/model.md §3, §7). All in joules
 /// (moments of inertia in kg m², momenta in kg m²/s).
 struct EnergyTerms {
   double t0 = 0, t1 = 0, t2 = 0;   // ½ω²∫(x²+y²)dm, ω∫(xẏ − yẋ)dm, ½q̇ᵀMq̇ [J]
@@ -86,7 +86,7 @@ public:
   /// Filament length L [m] (the scale of the validity ratio |y_t|/L).
   virtual double beam_length() const = 0;
   /// True when the theory's geometry is exact at any deflection (the elastica), so that the
-  /// deflection warning of simulation.deflection_warning_ratio (SPEC §10) does not apply.
+  /// deflection warning of simulation.deflection_warning_ratio (docs/model.md §10) does not apply.
   virtual bool geometrically_exact() const = 0;
 
   /// A workspace for this model (the only kind its evaluations accept).
@@ -117,7 +117,7 @@ public:
                                        const Eigen::Ref<const Eigen::VectorXd>& qdd, BeamWorkspace& ws) const = 0;
 
   /// The power the beam's own damping dissipates at q̇, q̇ᵀC q̇ ≥ 0 [W] (its generalised force −C q̇
-  /// is part of Ψ). The damping is internal: it exerts no moment about the hub (SPEC §11).
+  /// is part of Ψ). The damping is internal: it exerts no moment about the hub (docs/model.md §11).
   virtual double dissipation(const Eigen::Ref<const Eigen::VectorXd>& qd) const = 0;
   /// True when the beam has damping (dissipation is not identically zero).
   virtual bool damped() const = 0;
@@ -125,7 +125,7 @@ public:
   virtual Linearization linearization() const = 0;
   /// A bound δ [m] on the tip's distance from its undeformed position (r_h + L, 0) in the hub frame
   /// for all of a free flight that starts at (q, q̇) with ω constant, or +inf where the model gives
-  /// none: the Jacobi integral, which free flight never increases, confines q (SPEC §7; docs/model.md
+  /// none: the Jacobi integral, which free flight never increases, confines q (docs/model.md §7; docs/model.md
   /// "Free flight that cannot reach the surface"). Overwrites the workspace.
   virtual double tip_excursion_bound(const Eigen::Ref<const Eigen::VectorXd>& q,
                                      const Eigen::Ref<const Eigen::VectorXd>& qd, BeamWorkspace& ws) const = 0;
@@ -141,7 +141,7 @@ void acceleration(const BeamModel& beam, const Eigen::Ref<const Eigen::VectorXd>
                   const Eigen::Ref<const Eigen::VectorXd>& qd, const Eigen::VectorXd* generalized_force,
                   BeamWorkspace& ws, Eigen::Ref<Eigen::VectorXd> qdd);
 
-/// The tip's distance from its clamp at (r_h, 0) in the hub frame, in units of L [-] (SPEC §10). An
+/// The tip's distance from its clamp at (r_h, 0) in the hub frame, in units of L [-] (docs/model.md §10). An
 /// inextensible filament has at most 1: above kReachLimit the model has left its geometry.
 double tip_reach(const BeamModel& beam, const Eigen::Ref<const Eigen::VectorXd>& q);
 inline constexpr double kReachLimit = 1.01;

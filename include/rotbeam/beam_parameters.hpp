@@ -1,4 +1,4 @@
-// The filament on its hub as a configuration describes it (SPEC §1, §9, §11): its material and
+// The filament on its hub as a configuration describes it (docs/model.md §1, §9, §11): its material and
 // section, the hub, the number of assumed modes, the beam theory and the rotation terms kept.
 // Every beam model is built from these (beam_factory.hpp).
 #pragma once
@@ -8,8 +8,8 @@
 
 namespace rotbeam {
 
-/// beam.theory: the thesis's quadratic foreshortening (SPEC §2–§3) or the geometrically exact
-/// planar elastica (SPEC §11).
+/// beam.theory: the thesis's quadratic foreshortening (docs/model.md §2–§3) or the geometrically exact
+/// planar elastica (docs/model.md §11).
 enum class BeamTheory { foreshortening, elastica };
 
 /// "foreshortening" / "elastica".
@@ -24,7 +24,7 @@ struct BeamParameters {
   int modes = 5;                     // n
   double hub_radius_m = 0.0635;      // r_h
   double speed_rpm = 550.0;          // hub spin
-  // Modal damping ratios ζ_i of the linearised modes at the hub speed (SPEC §11): empty for none,
+  // Modal damping ratios ζ_i of the linearised modes at the hub speed (docs/model.md §11): empty for none,
   // one value for every mode, or n values (mode order: ascending frequency).
   std::vector<double> damping_ratio;
   BeamTheory theory = BeamTheory::foreshortening;  // beam.theory

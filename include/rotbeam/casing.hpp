@@ -1,4 +1,4 @@
-// A casing around the hub (issue "Beyond the flat plane"; SPEC §11): the closed curve
+// A casing around the hub (issue "Beyond the flat plane"; docs/model.md §11): the closed curve
 // ρ = R(φ) = r_h + L + c(φ) in polar coordinates (ρ, φ) about the hub centre, at rest, the tip inside.
 // The clearance c(φ) is one of
 //   concentric:  c(φ) = c0                                                     (lobes = 0)

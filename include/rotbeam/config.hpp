@@ -1,4 +1,4 @@
-// Case configuration (SPEC §9): one TOML file plus `--set section.key=value` overrides.
+// Case configuration (docs/model.md §9): one TOML file plus `--set section.key=value` overrides.
 // Unknown keys, wrong types, non-finite and out-of-range values raise ConfigError with a one-line
 // message naming the key and the value. This layer only reads and validates; building the case
 // and running it is the simulation layer's (case.hpp). The defaults are those of the structs the

@@ -1,4 +1,4 @@
-// The contact-law seam (SPEC §4, §5, §11): what the surface pushes on the tip with, and what happens
+// The contact-law seam (docs/model.md §4, §5, §11): what the surface pushes on the tip with, and what happens
 // when the tip touches it. A contact law is an object (ContactLaw) made once per case by
 // make_contact_law (contact_laws.hpp) from the case's ContactSettings, immutable and shared by any
 // number of passes and threads. It
@@ -19,7 +19,7 @@
 // Force conventions: because ∂C/∂R_tip is the unit normal n, λ ≤ 0 is the physical normal force:
 // F_n = −λ [N]; friction on the tip acts along the tangent t, F_t = −μ F_n s_t with s_t = sign(V_t).
 // With compat.thesis_forces the thesis's convention is used instead: F_n = |λ|·|∇C| and
-// μ_eff = μ|∇C| (|∇C| being the norm of the modal-coordinate gradient, SPEC §4).
+// μ_eff = μ|∇C| (|∇C| being the norm of the modal-coordinate gradient, docs/model.md §4).
 #pragma once
 
 #include "rotbeam/impact.hpp"
@@ -41,7 +41,7 @@ struct FrictionModel {
 
 enum class ContactModel { rigid, hertz };
 
-/// Hertz sphere-on-flat contact of the filament's rounded tip with the surface (SPEC §11):
+/// Hertz sphere-on-flat contact of the filament's rounded tip with the surface (docs/model.md §11):
 /// F_n = k δ^{3/2}(1 + c δ̇), k = (4/3) E* √R, 1/E* = (1 − ν_w²)/E_w + (1 − ν_s²)/E_s.
 struct HertzContact {
   double tip_radius_m = 0.0;                  // R (contact.tip_radius_m); 0: the wire's radius D/2
@@ -68,7 +68,7 @@ const char* contact_model_name(ContactModel m);
 double hertz_tip_radius(const HertzContact& hertz, double wire_diameter_m);
 
 /// k = (4/3) E* √R × stiffness_factor [N/m^{3/2}] for a wire of modulus `wire_youngs_pa` [Pa] and diameter
-/// `wire_diameter_m` [m] (R = hertz.tip_radius_m, or D/2 when that is 0). SPEC §11.
+/// `wire_diameter_m` [m] (R = hertz.tip_radius_m, or D/2 when that is 0). docs/model.md §11.
 double hertz_stiffness(const HertzContact& hertz, double wire_youngs_pa, double wire_diameter_m);
 
 /// The Hunt–Crossley product x = c·v0 that gives the restitution e ∈ (0, 1] to a single mass m

@@ -1,4 +1,4 @@
-// Convergence made visible (SPEC §10): one case rerun over a ladder of adaptive tolerances, thesis
+// Convergence made visible (docs/model.md §10): one case rerun over a ladder of adaptive tolerances, thesis
 // step sizes and mode counts, each run compared with the tightest adaptive run.
 #pragma once
 

@@ -1,4 +1,4 @@
-// A round workpiece (issue "Beyond the flat plane"; SPEC §11): a circle of radius R whose axis is
+// A round workpiece (issue "Beyond the flat plane"; docs/model.md §11): a circle of radius R whose axis is
 // parallel to the hub's, centred on +X at c = (d + R, 0) so that its nearest point to the hub is at
 // distance d = r_h + L − pL, where the undeformed tip reaches p·L into it (the plane's meaning of
 // depth). It may spin about its own axis at Ω_s (either sense), which enters only the friction law

@@ -1,6 +1,6 @@
-// Equations of motion of the foreshortening beam in free flight (SPEC §3, thesis eqns 4-60…4-82):
+// Equations of motion of the foreshortening beam in free flight (docs/model.md §3, thesis eqns 4-60…4-82):
 //
-//   M(q) q̈ + Ψ(q, q̇) = Q,   Ψ = 2ω G(q) q̇ + D(q, q̇) q̇ + K_ω(q) q + K_b(q) q (+ C q̇ when damped, SPEC §11).
+//   M(q) q̈ + Ψ(q, q̇) = Q,   Ψ = 2ω G(q) q̇ + D(q, q̇) q̇ + K_ω(q) q + K_b(q) q (+ C q̇ when damped, docs/model.md §11).
 //
 // Units: q in metres, q̇ in m/s, forces (Ψ, Q) in newtons (generalised), M in kg.
 // Every function here works on a caller-owned workspace and allocates nothing.

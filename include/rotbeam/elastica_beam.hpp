@@ -1,4 +1,4 @@
-// The geometrically exact filament (SPEC §11 "Geometrically exact filament"): a planar,
+// The geometrically exact filament (docs/model.md §11 "Geometrically exact filament"): a planar,
 // inextensible, unshearable Euler–Bernoulli beam whose tangent angle is
 //
 //   φ(s) = Σ q_i ψ_i(s),  ψ_i(s) = S_i'(s/L)/L,

@@ -1,4 +1,4 @@
-// Energies and hub angular momentum of the foreshortening beam (SPEC §3, §7), from the
+// Energies and hub angular momentum of the foreshortening beam (docs/model.md §3, §7), from the
 // precomputed integrals:
 //   T2 = ½ q̇ᵀ M q̇            kinetic energy of the motion relative to the hub frame
 //   T1 = ω ∫ (x ẏ − y ẋ) dm   gyroscopic coupling

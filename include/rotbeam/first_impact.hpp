@@ -1,7 +1,7 @@
 // The first impact of a pass (thesis Table 5-3): free flight from the start with the thesis's
 // stepper (fixed-step Butcher RK5, C = 0 located on the RK5 step) to the first touch (or, for a
 // rigid start, a jump to the geometric impact time with q = q̇ = 0, thesis §4.6 Step 1), then the
-// impact law of SPEC §5.
+// impact law of docs/model.md §5.
 #pragma once
 
 #include "rotbeam/impact.hpp"

@@ -1,4 +1,4 @@
-// The force the tip puts on the surface, binned over the hub angle (SPEC §7, output.bin_deg): the
+// The force the tip puts on the surface, binned over the hub angle (docs/model.md §7, output.bin_deg): the
 // momentum each bin receives — the impulses of the impacts in it and ∫F dt of sustained contact
 // over it — and that momentum divided by the bin's duration, the mean force over the bin. A pass
 // made of impacts alone has no contact force at any instant, but its binned force is what the

@@ -1,4 +1,4 @@
-// What the surface receives from a filament (SPEC §7, output.bin_deg): one bin of hub angle and its
+// What the surface receives from a filament (docs/model.md §7, output.bin_deg): one bin of hub angle and its
 // momentum, one step's or one impact's delivery, and the peaks of the binned force. Words only;
 // the bins themselves are the simulation layer's ForceBins (force_bins.hpp).
 #pragma once
@@ -22,7 +22,7 @@ struct ForceBin {
 };
 
 /// What one accepted step (span_deg > 0) or one impact (span_deg = 0, impact = true) of a pass
-/// delivered, at relative hub angle from_deg (SPEC §11: (−180°, 180°], 0° at the surface's deepest
+/// delivered, at relative hub angle from_deg (docs/model.md §11: (−180°, 180°], 0° at the surface's deepest
 /// point): the momentum into the surface and the hub's angular impulse on the filament, ΔH_z less the
 /// contact's angular impulse, so that ω times their sum over a revolution is its hub work exactly.
 struct MomentumDelivery {

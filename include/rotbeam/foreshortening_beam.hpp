@@ -1,4 +1,4 @@
-// The thesis's beam theory (SPEC §2–§3): an inextensible Euler–Bernoulli filament with n assumed
+// The thesis's beam theory (docs/model.md §2–§3): an inextensible Euler–Bernoulli filament with n assumed
 // cantilever modes and quadratic foreshortening, x(ξ) = r_h + ξL − qᵀISP(ξ)q/(2L), y(ξ) = S(ξ)ᵀq,
 // clamped radially to a hub of radius r_h spinning at ω. The first implementation of the
 // beam-model seam (beam_model.hpp). Everything here is fixed for a run; the state (t, q, q̇) and
@@ -19,7 +19,7 @@ namespace rotbeam {
 class ForeshorteningBeam final : public BeamModel, public BeamConstants {
 public:
   std::shared_ptr<const ModalIntegrals> integrals;
-  // Modal damping (SPEC §11): C = M0 Φ diag(2ζ_iΩ_i) Φᵀ M0 with Φ the mass-normalised linear modes
+  // Modal damping (docs/model.md §11): C = M0 Φ diag(2ζ_iΩ_i) Φᵀ M0 with Φ the mass-normalised linear modes
   // at ω (M0 = m·1); the generalised force is −C q̇. Empty (0×0) when undamped.
   Eigen::MatrixXd damping;       // C [kg/s]
   bool damped() const override { return damping.size() > 0; }
@@ -38,7 +38,7 @@ public:
   void tip(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qd,
            HubFrameTip& out) const override;
   Eigen::Vector2d tip_position(const Eigen::Ref<const Eigen::VectorXd>& q) const override;
-  /// y(ξ) = Σ q_i S_i(ξ), x(ξ) = r_h + ξL − (1/2L)∫₀^ξ (Σ q_i S_i')² dη (SPEC §2's foreshortening
+  /// y(ξ) = Σ q_i S_i(ξ), x(ξ) = r_h + ξL − (1/2L)∫₀^ξ (Σ q_i S_i')² dη (docs/model.md §2's foreshortening
   /// at every point; at ξ = 1 the tip), the integral by 8-point Gauss–Legendre on panels of at most
   /// 1/(n + 2).
   void shape(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& xi,

@@ -1,4 +1,4 @@
-// The contact geometry of a curved rigid surface from its gap field (SPEC §4, §11): a surface whose
+// The contact geometry of a curved rigid surface from its gap field (docs/model.md §4, §11): a surface whose
 // gap at a point P of the plane is a smooth function g(P) (its value, gradient ∇g and Hessian H at
 // the tip) and whose material moves as a rigid rotation at Ω_s about a centre c fills every
 // contact-geometry field of TipKinematics through the chain rule:

@@ -1,4 +1,4 @@
-// Impact by momentum balance (SPEC §5, thesis eqn 4-106):
+// Impact by momentum balance (docs/model.md §5, thesis eqn 4-106):
 //   q̇⁺ = q̇⁻ + P M⁻¹∇C,  P = −(1 + e) Ċ⁻ / a,  a = ∇CᵀM⁻¹∇C,  so that Ċ⁺ = −e Ċ⁻.
 // Position and time are unchanged; friction during the impact is neglected.
 // P is the impulse on the tip along the surface normal [N s] (negative: the surface pushes the tip
@@ -14,7 +14,7 @@ class Surface;
 enum class RestitutionModel { yigit, constant };
 enum class RestitutionSpeed { normal, full };
 /// Friction during the impact: none (the thesis: the impulse is normal) or Coulomb's law with
-/// Stronge's energetic coefficient of restitution (SPEC §11).
+/// Stronge's energetic coefficient of restitution (docs/model.md §11).
 enum class ImpactFriction { none, coulomb };
 
 /// How e is chosen at an impact.
@@ -57,10 +57,10 @@ struct ImpactResult {
 inline bool rebounds(const ImpactResult& r) { return r.restitution > 1e-12; }
 
 /// Applies the impact law at (t, q) to qd in place. Requires an approaching tip (Ċ⁻ > 0);
-/// throws std::domain_error otherwise (a receding tip has no impact, SPEC §5). `mu` is Coulomb's
+/// throws std::domain_error otherwise (a receding tip has no impact, docs/model.md §5). `mu` is Coulomb's
 /// coefficient during the impact, used when law.friction is `coulomb`.
 ///
-/// Frictionless (the thesis): q̇⁺ = q̇⁻ + P M⁻¹∇C, P = −(1 + e)Ċ⁻/a. Coulomb (SPEC §11, Stronge
+/// Frictionless (the thesis): q̇⁺ = q̇⁻ + P M⁻¹∇C, P = −(1 + e)Ċ⁻/a. Coulomb (docs/model.md §11, Stronge
 /// 2000, ch. 5): the normal impulse p = −P grows from 0; with a_nn = ∇CᵀM⁻¹∇C, a_nt = ∇CᵀM⁻¹g_t,
 /// a_tt = g_tᵀM⁻¹g_t (g_t = ∂V_t/∂q̇) the normal and slip velocities are piecewise linear in p:
 /// sliding with s = sign(V_t), dP_t = −μ s dp; when V_t reaches 0 the tip sticks (dP_t = a_nt/a_tt dp)

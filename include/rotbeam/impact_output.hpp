@@ -1,4 +1,4 @@
-// The first-impact record of `rotbeam impact --json` (SPEC §7), shared by the CLI and Python.
+// The first-impact record of `rotbeam impact --json` (docs/model.md §7), shared by the CLI and Python.
 #pragma once
 
 #include "rotbeam/config.hpp"

@@ -1,4 +1,4 @@
-// The integrating factor of the adaptive scheme (Lawson's method; SPEC §6): the linear modal
+// The integrating factor of the adaptive scheme (Lawson's method; docs/model.md §6): the linear modal
 // oscillation about the straight filament is propagated exactly, and the Runge–Kutta pair
 // integrates only what remains.
 //

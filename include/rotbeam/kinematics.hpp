@@ -1,5 +1,5 @@
 // The tip's motion in the global frame and the contact geometry the surface makes of it
-// (SPEC §2, §4). The beam model gives the tip in the hub frame (beam_model.hpp); the hub's
+// (docs/model.md §2, §4). The beam model gives the tip in the hub frame (beam_model.hpp); the hub's
 // rotation R(θ) takes it to the global frame; the surface (surface.hpp) turns that motion into the
 // gap C and its derivatives. This file is the one place where the rotation is applied:
 //   R = R(θ) r,  V = R(θ)(ṙ + ω J r),  A = (∂R/∂q) q̈ + R(θ)(r_quadratic + 2ω J ṙ − ω² r),  J = [0 −1; 1 0]

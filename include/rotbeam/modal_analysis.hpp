@@ -1,4 +1,4 @@
-// Linearised modal analysis about the straight beam (q = 0) at a given hub speed (SPEC §3):
+// Linearised modal analysis about the straight beam (q = 0) at a given hub speed (docs/model.md §3):
 //   m q̈ + (K_ω(0) + K_b(0)) q = 0  (G(0) = 0 and D = 0, so the in-plane modes decouple).
 // Frequencies Ω_k/2π of the lead-lag modes of the spinning cantilever; the mode shapes are the
 // eigenvectors in modal coordinates (normalised to unit length), w_k(ξ) = S(ξ)ᵀ φ_k.
@@ -25,7 +25,7 @@ ModalAnalysis modal_analysis(const ForeshorteningBeam& model);
 /// speed (K φ = Ω² M0 φ, BeamModel::linearization), ascending; NaN where K makes a mode unstable.
 Eigen::VectorXd natural_frequencies_hz(const BeamModel& beam);
 
-/// The modal damping matrix of SPEC §11, C = M0 Φ diag(2ζ_iΩ_i) Φᵀ M0 [kg/s], with Ω_i and Φ the
+/// The modal damping matrix of docs/model.md §11, C = M0 Φ diag(2ζ_iΩ_i) Φᵀ M0 [kg/s], with Ω_i and Φ the
 /// M0-normalised modes of K φ = Ω² M0 φ (ascending Ω), for the ratios ζ (empty or all zero: an empty
 /// 0×0 matrix, no damping; one value for every mode; or n values). Throws std::invalid_argument on a
 /// ratio that is negative or not finite, a count other than 1 or n, and a damped mode without a

@@ -1,4 +1,4 @@
-// Cantilever (clamped-free) beam eigenfunctions used as assumed modes (SPEC §2).
+// Cantilever (clamped-free) beam eigenfunctions used as assumed modes (docs/model.md §2).
 //
 //   S_i(ξ) = cosh r_iξ − cos r_iξ − σ_i (sinh r_iξ − sin r_iξ),  ξ = s/L ∈ [0, 1],
 //   σ_i = (sinh r_i − sin r_i)/(cosh r_i + cos r_i),  cos r_i cosh r_i = −1.
@@ -35,7 +35,7 @@ public:
   int size() const { return static_cast<int>(root_.size()); }
   /// r_i (dimensionless), i = 0 … n−1 (mode i+1).
   double root(int i) const { return root_[i]; }
-  /// σ_i of SPEC §2.
+  /// σ_i of docs/model.md §2.
   double sigma(int i) const { return sigma_[i]; }
 
   /// Derivative order k = 0…4 of S_i with respect to ξ at ξ ∈ [0, 1].

@@ -1,4 +1,4 @@
-// The ξ-integrals of SPEC §3, computed once per mode count and shared (read-only) by every model.
+// The ξ-integrals of docs/model.md §3, computed once per mode count and shared (read-only) by every model.
 //
 // With ISP(ξ) = ∫₀^ξ S'S'ᵀ dη and P(ξ) = S''S'ᵀ + S'S''ᵀ, the equations of motion, the energies and
 // the hub angular momentum need only these constant arrays (all dimensionless, ξ ∈ [0, 1]):

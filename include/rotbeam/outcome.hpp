@@ -10,9 +10,9 @@
 
 namespace rotbeam {
 
-/// What happened at an instant of a pass (events.csv `kind`, SPEC §7).
+/// What happened at an instant of a pass (events.csv `kind`, docs/model.md §7).
 enum class EventKind {
-  impact,             // a momentum-balance jump (SPEC §5)
+  impact,             // a momentum-balance jump (docs/model.md §5)
   lift_off,           // a touch or plastic impact after which the tip leaves at once
   contact_start,      // sustained contact begins
   contact_end,        // sustained contact ends (λ reached 0, or the tip stopped sliding and lifts off)
@@ -28,7 +28,7 @@ enum class EventKind {
 
 /// Why a pass stopped before its end angle (summary.json `failure.kind`).
 enum class FailureKind {
-  painleve,        // a λ + b|λ| = c has no or two admissible solutions (SPEC §4)
+  painleve,        // a λ + b|λ| = c has no or two admissible solutions (docs/model.md §4)
   stick,           // V_t = 0 and the tangential force needed is inside the friction cone
   corrector,       // the thesis scheme's corrector did not converge
   step_underflow,  // the step-size control cannot meet the tolerance in double precision

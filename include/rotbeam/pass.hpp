@@ -1,4 +1,4 @@
-// A whole pass through contact (SPEC §6, §7): the initial conditions, the outputs as they are
+// A whole pass through contact (docs/model.md §6, §7): the initial conditions, the outputs as they are
 // produced (a PassSink) or kept in memory (PassResult), and the entry point that runs the pass
 // driver over the configured scheme's stepper.
 #pragma once
@@ -23,7 +23,7 @@ struct InitialConditions {
   Eigen::VectorXd q0, qd0;  // q(0) [m], q̇(0) [m/s] at θ0 (flexible start)
 };
 
-/// One row of the time history (SPEC §7). Forces in N, positions in m, velocities in m/s.
+/// One row of the time history (docs/model.md §7). Forces in N, positions in m, velocities in m/s.
 struct HistoryRow {
   double t = 0, theta = 0;
   Phase phase = Phase::free;
@@ -45,10 +45,10 @@ struct PassEvent {
 
 struct ContactInterval {
   double t_start = 0, t_end = 0, theta_start = 0, theta_end = 0, y_start = 0, y_end = 0;
-  int revolution = 1;  // the revolution it began in (SPEC §11: revolution k spans [θ0 + 360°(k − 1), θ0 + 360°k))
+  int revolution = 1;  // the revolution it began in (docs/model.md §11: revolution k spans [θ0 + 360°(k − 1), θ0 + 360°k))
 };
 
-/// One revolution of a run over many (SPEC §11, revolutions.csv). Its ledger's energy terms sum to
+/// One revolution of a run over many (docs/model.md §11, revolutions.csv). Its ledger's energy terms sum to
 /// its energy change (ledger.hpp; the residual is the difference). Angles are relative to the
 /// revolution, in (−180°, 180°], 0° where the undeformed filament points at the surface's deepest point.
 struct RevolutionRecord {
@@ -72,7 +72,7 @@ struct RevolutionRecord {
   Eigen::VectorXd q, qd;  // the state at the revolution's end [m], [m/s]
 };
 
-/// The section state z = (q/L, q̇/(ωL)) (dimensionless) of the modal state q [m], q̇ [m/s] (SPEC §11),
+/// The section state z = (q/L, q̇/(ωL)) (dimensionless) of the modal state q [m], q̇ [m/s] (docs/model.md §11),
 /// written into z (resized to 2n) or returned.
 void section_state(const BeamModel& beam, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Eigen::VectorXd& z);
 Eigen::VectorXd section_state(const BeamModel& beam, const Eigen::VectorXd& q, const Eigen::VectorXd& qd);
@@ -87,7 +87,7 @@ struct Multiplier {
   double magnitude() const { return std::hypot(re, im); }
 };
 
-/// The search for the periodic steady state (simulation.until_steady, SPEC §11).
+/// The search for the periodic steady state (simulation.until_steady, docs/model.md §11).
 struct SteadyState {
   bool sought = false;                 // simulation.until_steady
   bool reached = false;
@@ -124,7 +124,7 @@ struct PassSummary {
   double stick_time_s = 0;  // the part of contact_time_s in which the tip stuck [s]
   double peak_normal_force_n = 0;
   double mean_normal_force_n = 0;
-  // The ledger of the pass in the inertial frame (SPEC §7, §11; ledger.hpp): works signed as energy
+  // The ledger of the pass in the inertial frame (docs/model.md §7, §11; ledger.hpp): works signed as energy
   // given to the filament, whose energy terms sum to the change of E = T + U (+ a compliant
   // contact's elastic energy (2/5)kδ^{5/2}), and the momenta exchanged with the surface.
   Ledger ledger;

@@ -1,10 +1,10 @@
-// Settings of a pass (SPEC §6, §9 [simulation] and [output]): the scheme, its steps or tolerances,
+// Settings of a pass (docs/model.md §6, §9 [simulation] and [output]): the scheme, its steps or tolerances,
 // and the recording. Every default is defined here once; the configuration reads into this struct.
 #pragma once
 
 namespace rotbeam {
 
-/// The integration scheme under the pass driver (SPEC §6).
+/// The integration scheme under the pass driver (docs/model.md §6).
 enum class Scheme {
   adaptive,  // error-controlled Dormand–Prince 5(4) with dense output and located events (default)
   thesis,    // the thesis's fixed-step RK5 and predictor–corrector (thesis §4.6–4.7)
@@ -20,7 +20,7 @@ enum class FactorUse {
 };
 const char* factor_use_name(FactorUse u);
 
-/// How a run looks for the periodic steady state (SPEC §12).
+/// How a run looks for the periodic steady state (docs/model.md §11).
 enum class SteadyMethod {
   brute_force,  // revolution after revolution until the section state stops changing
   shooting,     // Newton on the one-revolution map at the section (studies layer, steady_state.hpp)
@@ -39,7 +39,7 @@ struct PassOptions {
   // simulation.end_when_clear: end one pass early, in free flight, once the tip provably cannot
   // reach the surface before end_angle_deg (BeamModel::tip_excursion_bound, Surface::max_gap_on_arc).
   bool end_when_clear = false;
-  // Revolutions (SPEC §12): with revolutions > 0 the run ends after that many whole turns from θ0
+  // Revolutions (docs/model.md §11): with revolutions > 0 the run ends after that many whole turns from θ0
   // (end_angle_deg is then θ0 + 360·revolutions) and the section θ = θ0 (mod 360°) closes each one.
   int revolutions = 0;                // simulation.revolutions: 0 = one pass to end_angle_deg
   bool until_steady = false;          // simulation.until_steady: stop once the section state repeats
@@ -54,7 +54,7 @@ struct PassOptions {
   double corrector_tolerance = 1e-5;  // simulation.corrector_tolerance: relative change of λ between iterates
   int corrector_max_iterations = 50;  // simulation.corrector_max_iterations
   bool thesis_dcdt = false;           // compat.thesis_dcdt: ∂C/∂t forced to −∇Cᵀu^p (thesis §6.3)
-  // Adaptive scheme (SPEC §6).
+  // Adaptive scheme (docs/model.md §6).
   double rtol = 1e-9;                 // simulation.rtol
   double atol = 1e-12;                // simulation.atol
   double max_step_s = 2e-5;           // simulation.max_step_s: upper bound on the adaptive step [s]
@@ -71,7 +71,7 @@ struct PassOptions {
   int history_revolutions = 1;        // output.history_revolutions: history and events of the last K revolutions (0: all)
   // While the tip is within near_surface_gap_m of the surface (C > −gap), rows every
   // near_surface_interval_s (free flight: on the stepper's dense output where it has one; 0: every
-  // accepted step) so that impacts, bounces and separations are drawn from many points (SPEC §7).
+  // accepted step) so that impacts, bounces and separations are drawn from many points (docs/model.md §7).
   double near_surface_interval_s = 2e-6;  // output.near_surface_interval_s [s]
   double near_surface_gap_m = 5e-4;       // output.near_surface_gap_m [m] (0: off)
   double bin_deg = 0.5;                   // output.bin_deg: hub-angle bins of the force on the surface [°]

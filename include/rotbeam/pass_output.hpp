@@ -1,4 +1,4 @@
-// Files of a pass (SPEC §7): history.csv, events.csv, summary.json. The rows and events stream to
+// Files of a pass (docs/model.md §7): history.csv, events.csv, summary.json. The rows and events stream to
 // disk as the pass produces them (PassFiles, a PassSink), so memory stays bounded whatever the
 // length of the run; summary.json is written last, atomically, so a folder holds a summary only
 // beside the complete files of the same run.
@@ -27,7 +27,7 @@ std::string events_header();
 void append_history_line(std::string& out, const HistoryRow& row);
 /// One events.csv line (with its newline) appended to `out`.
 void append_event_line(std::string& out, const PassEvent& event);
-/// Column names of revolutions.csv for n modes (runs over many revolutions, SPEC §11).
+/// Column names of revolutions.csv for n modes (runs over many revolutions, docs/model.md §11).
 std::string revolutions_header(int n);
 /// One revolutions.csv line (with its newline) appended to `out`.
 void append_revolution_line(std::string& out, const RevolutionRecord& record);
@@ -35,7 +35,7 @@ std::string revolutions_csv(const PassResult& result, int n);
 /// The whole files of an in-memory result.
 std::string history_csv(const PassResult& result, int n);
 std::string events_csv(const PassResult& result);
-/// force_bins.csv (SPEC §7): the force on the surface in hub-angle bins, impacts included.
+/// force_bins.csv (docs/model.md §7): the force on the surface in hub-angle bins, impacts included.
 std::string force_bins_csv(const PassResult& result);
 /// summary.json: the metrics, contact intervals, warnings, failure (or null), the surface as it
 /// describes itself, and the resolved config.

@@ -1,4 +1,4 @@
-// The thesis's flat rigid surface X = d (SPEC §1, §4): C = X_t − d, ∇C = ∂X_t/∂q,
+// The thesis's flat rigid surface X = d (docs/model.md §1, §4): C = X_t − d, ∇C = ∂X_t/∂q,
 // ∂C/∂t = −ωY_t, Ċ = V_X, γ = the X part of the tip's bias acceleration; normal +X, tangent +Y,
 // slip V_t = V_Y (the plane is at rest).
 #pragma once

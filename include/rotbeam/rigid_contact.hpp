@@ -1,4 +1,4 @@
-// Sustained rigid contact with Coulomb friction (SPEC §4, thesis eqns 4-86…4-97, 4-109).
+// Sustained rigid contact with Coulomb friction (docs/model.md §4, thesis eqns 4-86…4-97, 4-109).
 //
 // In contact the tip obeys M q̈ = −Ψ + λ∇C + |λ| Q*, with λ ≤ 0 and Q* = −μ_eff s_t ∂V_t/∂q̇, where
 // s_t = ±1 is the slip direction (sign of the tangential slip V_t). The forces this implies are
@@ -34,7 +34,7 @@ struct SlipDecision {
 };
 
 /// Speed below which V_t is treated as zero: 1e-9 ω(r_h + L) (far above round-off, far below any
-/// physical slip speed; the sign of V_t is never taken from round-off, SPEC §10).
+/// physical slip speed; the sign of V_t is never taken from round-off, docs/model.md §10).
 double stick_speed_threshold(const BeamModel& beam);
 
 /// The forces that hold the tip locked (two constraints: C̈ = ∇Cᵀq̈ + γ = 0 and V̇_t = gᵀq̈ + γ_t = 0
@@ -60,7 +60,7 @@ SlipDecision decide_slip(const BeamModel& beam, const FrictionModel& friction, c
 /// The locked-tip analysis of decide_slip, whatever V_t is (used at a located V_t = 0 event).
 SlipDecision decide_slip_at_rest(const FrictionModel& friction, const TipKinematics& tip, BeamWorkspace& ws);
 
-/// Result of the acceleration-level multiplier (thesis eqn 4-109, with the complete γ of SPEC §4).
+/// Result of the acceleration-level multiplier (thesis eqn 4-109, with the complete γ of docs/model.md §4).
 struct AccelerationMultiplier {
   MultiplierSolution solution;
   double a = 0, b = 0, c = 0;  // of a λ + b|λ| = c

@@ -1,4 +1,4 @@
-// The periodic steady state of a run over many revolutions (SPEC §11, docs/model.md "Many
+// The periodic steady state of a run over many revolutions (docs/model.md §11, docs/model.md "Many
 // revolutions"): the m-revolution map of the section state, its Jacobian by finite differences,
 // the Floquet multipliers, and the two searches (brute force and shooting) behind
 // simulation.until_steady.
@@ -52,7 +52,7 @@ private:
 /// The eigenvalues of a map's Jacobian, largest magnitude first.
 std::vector<Multiplier> floquet_multipliers(const Eigen::MatrixXd& jacobian);
 
-/// Settings of the shooting search (SPEC §11); defaults are the product's.
+/// Settings of the shooting search (docs/model.md §11); defaults are the product's.
 struct ShootingSettings {
   double warmup_tolerance = 1e-3;  // brute force until the section distance is below this …
   int warmup_revolutions = 30;     // … or this many revolutions, whichever comes first

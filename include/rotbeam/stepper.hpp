@@ -1,4 +1,4 @@
-// The steppers' contract (SPEC §6): one interface under the pass driver, modelled on SUNDIALS'
+// The steppers' contract (docs/model.md §6): one interface under the pass driver, modelled on SUNDIALS'
 // CVODE — a step call that returns a status, root functions with directions, statistics. The
 // driver (pass_driver.hpp) owns the phase logic and the contact law (contact_law.hpp) its
 // transitions; a stepper only advances the state of its phase and reports what it crossed.
@@ -82,7 +82,7 @@ struct StepperTraits {
 
 /// How free flight begins. A pass start (the start of a run, or a revolution's section) depends on
 /// the state alone: the adaptive step starts afresh and the thesis's grid starts there, so that one
-/// revolution is the same map of the section state wherever it runs (SPEC §11).
+/// revolution is the same map of the section state wherever it runs (docs/model.md §11).
 enum class FreeStart {
   pass_start,  // the start of a run or a revolution
   rebound,     // after an impact that bounces

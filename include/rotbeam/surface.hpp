@@ -1,4 +1,4 @@
-// The surface seam (SPEC §1, §4, §11): a rigid surface turns the tip's motion into the gap C, its
+// The surface seam (docs/model.md §1, §4, §11): a rigid surface turns the tip's motion into the gap C, its
 // gradient ∇C, ∂C/∂t, Ċ, γ, the normal and tangent at the contact point, the surface's own velocity
 // there and the tangential slip. Nothing outside a Surface knows its shape: the contact
 // algorithms, the steppers, the outputs and the plots see only what it fills in TipKinematics and
@@ -31,7 +31,7 @@ public:
   /// (simulation.end_when_clear): < 0 means that no such point touches the surface.
   virtual double max_gap_on_arc(double radius, double theta_from, double theta_to, double excursion) const = 0;
   /// The beam angle [rad] (mod 2π) at which the undeformed filament points at the surface's deepest
-  /// point: 0° of the per-revolution angles (SPEC §11).
+  /// point: 0° of the per-revolution angles (docs/model.md §11).
   virtual double deepest_angle() const = 0;
   /// The shape and its parameters for the outputs (summary.json `surface`) and the plots.
   virtual nlohmann::json describe() const = 0;
@@ -43,7 +43,7 @@ const char* surface_shape_name(SurfaceShape shape);
 /// Inputs of the surface of a case ([surface] section; friction belongs to the contact law).
 struct SurfaceParameters {
   SurfaceShape shape = SurfaceShape::plane;  // surface.shape
-  double depth_fraction = 0.02;  // p: the undeformed tip reaches p·L beyond the surface at its deepest (SPEC §11); plane, cylinder
+  double depth_fraction = 0.02;  // p: the undeformed tip reaches p·L beyond the surface at its deepest (docs/model.md §11); plane, cylinder
   double radius_m = 0.1;         // cylinder: R [m]
   double speed_rpm = 0;          // cylinder: its spin about its own axis (counter-clockwise > 0, the hub's sense) [rpm]
   double clearance_m = 0;        // casing: c0, its radius is r_h + L + c0 (negative: interference) [m]

@@ -1,6 +1,6 @@
 // The record of the tip's state that the kinematics (kinematics.hpp), the surface (surface.hpp)
 // and the contact algorithms share: the motion in the global frame, filled by tip_kinematics, and
-// the contact geometry, filled by the surface (SPEC §2, §4).
+// the contact geometry, filled by the surface (docs/model.md §2, §4).
 #pragma once
 
 #include "rotbeam/beam_model.hpp"

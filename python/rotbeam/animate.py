@@ -73,7 +73,7 @@ def _shape_overrides(summary):
 def with_rigid_approach(history, summary, step_deg=0.05):
     """The history with the rigid approach filled in, for histories written before runs recorded
     it: such a rigid start has the state at θ0 and next at the first impact (the undeformed
-    filament turns rigidly in between, q = 0, SPEC §4.6 Step 1). Rows every `step_deg` of that
+    filament turns rigidly in between, q = 0, thesis §4.6 Step 1). Rows every `step_deg` of that
     turn are added, exact (q = 0, t = (θ − θ0)/ω), so that an animation shows the filament
     approaching the surface. Histories that record the turn are returned as they are."""
     c = summary["config"]
@@ -338,7 +338,7 @@ def animate(folder, output=None, frames=None, frames_per_degree=None, window=Non
     inset_surface_y = np.linspace(-zmm, zmm, 50)
 
     many = bool(summary.get("revolutions", 0))
-    theta0 = -90.0  # the hub angle at t = 0 (SPEC §2): revolution k spans θ0 + 360°(k − 1) … θ0 + 360°k
+    theta0 = -90.0  # the hub angle at t = 0 (docs/model.md §2): revolution k spans θ0 + 360°(k − 1) … θ0 + 360°k
 
     def draw(k):
         tx, ty = px[k, -1], py[k, -1]
@@ -498,6 +498,8 @@ def main(argv=None):
     parser.add_argument("--zoom", type=float, metavar="MM", help="half-width of the tip inset [mm]")
     parser.add_argument("--magnify", type=float, default=1.0, help="draw the deflection this many times (default 1)")
     parser.add_argument("--fps", type=float, default=20.0, help="frames per second of the file (default 20)")
+    parser.add_argument("--quiet", action="store_true", help="no frame counter and no `wrote` lines (notes and "
+                        "errors are still said)")
     args = parser.parse_args(argv)
     folder = Path(args.folder)
     if not folder.exists():
@@ -515,7 +517,8 @@ def main(argv=None):
     try:
         written = animate(folder, args.output, frames=args.frames, frames_per_degree=args.frames_per_degree,
                           window=args.window, zoom_mm=args.zoom, magnify=args.magnify, fps=args.fps,
-                          note=lambda text: print(f"rotbeam: note: {text}", file=sys.stderr))
+                          note=lambda text: print(f"rotbeam: note: {text}", file=sys.stderr),
+                          progress=(lambda done, total: None) if args.quiet else None)
     except DamagedFolder as e:
         return error(e)
     except OSError as e:
@@ -523,7 +526,7 @@ def main(argv=None):
     except (ValueError, KeyError, IndexError) as e:
         print(f"rotbeam: error: {e}"[:400], file=sys.stderr)
         return 2
-    return wrote(written)
+    return 0 if args.quiet else wrote(written)
 
 
 if __name__ == "__main__":

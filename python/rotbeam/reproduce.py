@@ -620,7 +620,7 @@ def write_report(root, progress=None):
         lines += [f"* {f}" for f in manifest["failures"]]
     lines += ["", "## Validity", "",
               "Every case here drives the tip beyond 0.1 L across the filament (the column max |y_t|/L; the base case",
-              "itself reaches 0.25), where the quadratic foreshortening model is at the edge of its validity (SPEC §10);",
+              "itself reaches 0.25), where the quadratic foreshortening model is at the edge of its validity (docs/model.md §10);",
               "the deep cases (6–8 %) reach 0.3–0.8. Their results are references for the model, not physics. The",
               "runs' warnings:", ""]
     seen = {}

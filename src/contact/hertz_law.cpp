@@ -1,4 +1,4 @@
-// The compliant contact law (SPEC §11, docs/contact.md): Hertz sphere-on-flat with Hunt–Crossley
+// The compliant contact law (docs/model.md §11, docs/contact.md): Hertz sphere-on-flat with Hunt–Crossley
 // damping, F_n = k δ^{3/2}(1 + c δ̇) from the penetration δ = C > 0 and its rate δ̇ = Ċ, and a
 // regularised Coulomb friction F_t = −μ F_n V_t/√(V_t² + v_ε²). Its one contact phase is a smooth
 // force integrated by ordinary steps; it ends where the gap opens (C crosses 0 downward). The

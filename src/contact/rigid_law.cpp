@@ -1,4 +1,4 @@
-// The rigid contact law (SPEC §4, §5; thesis §4.4–4.5): a unilateral constraint C = 0 whose multiplier
+// The rigid contact law (docs/model.md §4, §5; thesis §4.4–4.5): a unilateral constraint C = 0 whose multiplier
 // λ ≤ 0 is the normal force, Coulomb friction F_t = −μ_eff|λ| s_t, and momentum-balance impacts with
 // a coefficient of restitution. Two contact phases (docs/contact.md, "Stick"):
 //   contact (sliding, s_t = ±1), a constraint: roots λ = 0 (separation) and V_t = 0 (the slip stops:

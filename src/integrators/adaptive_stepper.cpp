@@ -1,4 +1,4 @@
-// The adaptive event-driven scheme as a stepper (SPEC §6): Dormand–Prince 5(4) with dense output
+// The adaptive event-driven scheme as a stepper (docs/model.md §6): Dormand–Prince 5(4) with dense output
 // from Boost.Odeint, roots located on the dense output, the contact law's phases integrated as it
 // says (contact_law.hpp).
 //
@@ -111,7 +111,7 @@ public:
     free_damping_ = 0.0;
     // Just after a bounce or a separation the tip sits on the surface (C ≈ 0) and recedes, after a
     // λ = 0 separation only tangentially (C̈ = 0), so the dense output's error can put C a hair above
-    // zero: a root there is not an impact (SPEC §5). The detector is armed once the tip has been
+    // zero: a root there is not an impact (docs/model.md §5). The detector is armed once the tip has been
     // below −ε; until then only a penetration beyond +ε counts. ε is ten times the local error
     // allowed on the gap: Σ|∂C/∂q_i|·(atol + rtol·(|q_i| + h|q̇_i|)), the error control being on q.
     tip_kinematics(sys_.beam, sys_.surface, t_, q_, qd_, tip_);
@@ -343,7 +343,9 @@ private:
   bool underflow(const std::string& why, StepOutcome& out) {
     out = failed(FailureKind::step_underflow,
                  why + " (rtol = " + short_number(opt_.rtol) + ", atol = " + short_number(opt_.atol) + ", last step " +
-                     short_number(dt_) + " s): the tolerance cannot be met in double precision here");
+                     short_number(dt_) + " s): the tolerance cannot be met in double precision here; raise "
+                     "simulation.rtol and simulation.atol, or where a contact stiffens it, contact.model = "
+                     "\"hertz\" with a smaller contact.stiffness_factor");
     return false;
   }
 

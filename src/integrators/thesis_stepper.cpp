@@ -1,5 +1,5 @@
 // The thesis's scheme as a stepper (thesis §4.6–4.7, Appendix B rotate.m and children), with the
-// physical forces of SPEC §4 and the decisions recorded in docs/deviations.md:
+// physical forces of docs/model.md §4 and the decisions recorded in docs/deviations.md:
 //   free flight   fixed-step Butcher RK5 (h_free); C = 0 located on the RK5 step itself (TOMS 748)
 //   contact       λ predicted from the acceleration-level equation (4-109) at the start of an
 //                 episode (the driver's λ0), then the previous step's λ; one RK5 step of the
@@ -8,7 +8,7 @@
 //                 0 < |λ| < fine_below_n; contact integrals by the trapezoidal rule, from λ = 0 at
 //                 the episode's start (rotate.m resets the multiplier there)
 //   damping work  −∫q̇ᵀCq̇ dt by the RK5 step's own quadrature in free flight and by the trapezoidal
-//                 rule over contact steps (SPEC §11)
+//                 rule over contact steps (docs/model.md §11)
 //   separation    λ > 0: linear interpolation to λ = 0 over the last step (Step 4b); then one free
 //                 step of h_contact and, while the tip is still at or beyond the surface, free steps
 //                 of h_free until it is clear (Step 5a, the tip-distance rule)

@@ -1,4 +1,4 @@
-// The contact metrics of a pass and of each revolution (SPEC §7, §11): impacts, the first touch and
+// The contact metrics of a pass and of each revolution (docs/model.md §7, §11): impacts, the first touch and
 // the last separation, contact episodes and their intervals, contact and stick time, the largest normal force
 // and the mean one.
 #pragma once

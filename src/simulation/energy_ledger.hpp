@@ -1,4 +1,4 @@
-// The energy ledger of a pass and of each revolution (SPEC §7, §11; ledger.hpp): the terms the steps
+// The energy ledger of a pass and of each revolution (docs/model.md §7, §11; ledger.hpp): the terms the steps
 // integrate and the impacts jump, the hub's work from the angular-momentum balance, the change of the
 // filament's energy (with the energy a compliant contact stores), and the audit of the Jacobi integral
 // in the rotating frame, h_end − h_start = ∫q̇ᵀQ dt − ∫q̇ᵀCq̇ dt + Σ impacts' jumps of T2.

@@ -33,7 +33,7 @@ void HistorySampler::note_energy(double jacobi, double t2) {
 
 double HistorySampler::hub_torque(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const ContactLoad& load) {
   // τ = dH_z/dt − (X_t F_Y − Y_t F_X): the hub's torque is the rate of the filament's angular momentum
-  // less the moment of the contact force (SPEC §7); dH_z/dt in closed form from q̈ = M⁻¹(Q − Ψ).
+  // less the moment of the contact force (docs/model.md §7); dH_z/dt in closed form from q̈ = M⁻¹(Q − Ψ).
   // `tip_` holds the kinematics at (t, q, q̇).
   const System& sys = ctx_.system;
   const ContactLoad l = contact_load(sys.law.friction(), tip_, qd, load.lambda, load.slip, generalized_force_);

@@ -1,4 +1,4 @@
-// The history rows of a pass (SPEC §7, history.csv): one row at the start and at every event, rows
+// The history rows of a pass (docs/model.md §7, history.csv): one row at the start and at every event, rows
 // on the grid of output.interval_s, and, while the tip is within output.near_surface_gap_m of the
 // surface, on the finer grid of output.near_surface_interval_s — inside free-flight steps from the
 // stepper's dense output, so that a step longer than the interval loses no row.

@@ -29,7 +29,7 @@ PassDriver::PassDriver(const System& system, const PassOptions& options, Stepper
       on_progress_(control.on_progress) {
   t_end_ = system.beam.time_at(options.end_angle_deg * M_PI / 180.0);
   if (options.revolutions > 0) {
-    // SPEC §11: revolution k spans [θ0 + 360°(k − 1), θ0 + 360°k); its end is the section.
+    // docs/model.md §11: revolution k spans [θ0 + 360°(k − 1), θ0 + 360°k); its end is the section.
     period_ = 2.0 * M_PI / system.beam.hub_motion().omega;
     t_end_ = options.revolutions * period_;
     next_section_ = options.revolutions > 1 ? period_ : INFINITY;

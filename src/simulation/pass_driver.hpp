@@ -1,4 +1,4 @@
-// The pass driver (SPEC §4–§6): the phase logic of a pass, written once over the steppers' contract
+// The pass driver (docs/model.md §4–§6): the phase logic of a pass, written once over the steppers' contract
 // (stepper.hpp) and the contact law's (contact_law.hpp). Free flight until the gap closes; then the
 // law decides (an impact, a contact phase, a lift-off) and the driver carries it out (PhaseControl);
 // a contact phase until one of its roots: the law's end of contact returns to free flight, its other

@@ -9,7 +9,7 @@ namespace rotbeam {
 double PassContext::omega() const { return system.beam.hub_motion().omega; }
 
 double PassContext::relative_angle_deg(double t) const {
-  // SPEC §11: relative to the revolution, in (−180°, 180°], 0° at the surface's deepest point.
+  // docs/model.md §11: relative to the revolution, in (−180°, 180°], 0° at the surface's deepest point.
   double a = std::remainder(system.beam.theta(t) - system.surface.deepest_angle(), 2.0 * M_PI) * 180.0 / M_PI;
   if (a <= -180.0) a += 360.0;
   return a;

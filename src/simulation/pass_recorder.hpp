@@ -1,4 +1,4 @@
-// The record of a pass for the driver (SPEC §7): its events, and its observers (pass_observer.hpp),
+// The record of a pass for the driver (docs/model.md §7): its events, and its observers (pass_observer.hpp),
 // each keeping one account — the history rows (history_sampler.hpp), the contact metrics
 // (contact_metrics.hpp), the energy ledger and its audit (energy_ledger.hpp), the force on the surface
 // by hub angle (force_binning.hpp), the momentum deliveries for a sink that asks (deliveries.hpp), the

@@ -1,4 +1,4 @@
-// The revolutions of a run over many (SPEC §11): each one's section state z = (q/L, q̇/(ωL)) at its
+// The revolutions of a run over many (docs/model.md §11): each one's section state z = (q/L, q̇/(ωL)) at its
 // end, its distance from the previous section (revolutions.csv's section_distance), and the last
 // complete one's record, which the summary reports.
 #pragma once

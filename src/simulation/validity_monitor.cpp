@@ -43,7 +43,7 @@ void ValidityMonitor::track(double t, const Eigen::VectorXd& q) {
   const double ratio = beam.tip_deflection(q) / beam.beam_length();
   if (ratio > s.max_tip_deflection_ratio) s.max_tip_deflection_ratio = ratio;
   rev_max_ratio_ = std::max(rev_max_ratio_, ratio);
-  // The deflection warning is the foreshortening model's (SPEC §10): the elastica's geometry is exact.
+  // The deflection warning is the foreshortening model's (docs/model.md §10): the elastica's geometry is exact.
   const bool limited = !beam.geometrically_exact();
   if (limited && o.deflection_limit_is_error && ratio > o.deflection_warning_ratio && !breached_) {
     breached_ = true;
@@ -54,7 +54,7 @@ void ValidityMonitor::track(double t, const Eigen::VectorXd& q) {
     deflection_warned_ = true;
     std::ostringstream m;
     m << "tip deflection exceeds " << o.deflection_warning_ratio
-      << " of the length: the quadratic foreshortening model is at the edge of its validity (SPEC §10)";
+      << " of the length: the quadratic foreshortening model is at the edge of its validity (docs/model.md §10)";
     journal_.warn(t, q, m.str());
   }
   // An inextensible filament's tip cannot be farther than L from its clamp at (r_h, 0); where the
@@ -67,7 +67,7 @@ void ValidityMonitor::track(double t, const Eigen::VectorXd& q) {
       std::ostringstream m;
       m.precision(3);
       m << "the tip is " << reach << " L from its clamp, farther than a filament of length L can reach: the model "
-        << "has left its geometry and its results are not physical (SPEC §10)";
+        << "has left its geometry and its results are not physical (docs/model.md §10)";
       journal_.warn(t, q, m.str());
       if (o.deflection_limit_is_error && !breached_) {
         breached_ = true;

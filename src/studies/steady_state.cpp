@@ -128,7 +128,7 @@ void report(const PassControl& control, std::chrono::steady_clock::time_point wa
   control.on_progress(p);
 }
 
-// The brute-force test for the steady state (SPEC §12): every complete revolution's section state
+// The brute-force test for the steady state (docs/model.md §11): every complete revolution's section state
 // against those of the last kMaxSteadyPeriod revolutions; the first within simulation.steady_tolerance
 // ends the run, periodic every p revolutions.
 class SteadyStateDetector final : public RevolutionWatcher {

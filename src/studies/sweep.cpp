@@ -19,6 +19,8 @@
 #include <cstring>
 #include <cstdio>
 #include <fstream>
+#include <iomanip>
+#include <sstream>
 #include <map>
 #include <mutex>
 #include <set>
@@ -121,6 +123,14 @@ const SweepMetric kBrushMetrics[] = {
     {"failed_filaments", "/failed_filaments", "1", "filaments stopped on a numerical failure"},
     {"wall_time_s", "/wall_time_s", "s", "wall time of the case (the machine's, not a result)"}};
 
+// " at t = … s, θ = … deg" of a failure, for the case's message (the console line and sweep.csv).
+std::string where_in_pass(double t_s, double theta_deg) {
+  std::ostringstream s;
+  s.precision(6);
+  s << " at t = " << t_s << " s, θ = " << std::fixed << std::setprecision(4) << theta_deg << " deg";
+  return s.str();
+}
+
 // Status and message of a case from how its pass or brush ended.
 void set_outcome(SweepCaseResult& res, const std::optional<NumericalFailure>& failure, const std::string& where) {
   if (!failure)
@@ -129,7 +139,7 @@ void set_outcome(SweepCaseResult& res, const std::optional<NumericalFailure>& fa
     res.status = SweepStatus::interrupted;
   else
     res.status = SweepStatus::failed;
-  if (failure) res.message = std::string(failure_name(failure->kind)) + where + ": " + failure->message;
+  if (failure) res.message = std::string(failure_name(failure->kind)) + where + where_in_pass(failure->t, failure->theta * 180.0 / M_PI) + ": " + failure->message;
 }
 
 // Writes `text` to the temporary file `path` (not atomically: nothing reads it under that name but
@@ -534,8 +544,12 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
         // A case that stopped on a diagnosed failure stays `failed`: resuming does not hide it.
         if (j["failure"].is_object()) {
           report.results[i].status = SweepStatus::failed;
-          report.results[i].message = j["failure"]["kind"].get<std::string>() + ": " +
-                                      j["failure"]["message"].get<std::string>() + " (computed by an earlier run)";
+          const nlohmann::json& f = j["failure"];
+          const std::string where = f.contains("t_s") && f["t_s"].is_number() && f["theta_deg"].is_number()
+                                        ? where_in_pass(f["t_s"].get<double>(), f["theta_deg"].get<double>())
+                                        : std::string();
+          report.results[i].message = f["kind"].get<std::string>() + where + ": " + f["message"].get<std::string>() +
+                                      " (computed by an earlier run)";
         } else {
           report.results[i].status = SweepStatus::resumed;
         }

@@ -17,7 +17,7 @@ inline std::string short_number(double v) {
   return s.str();
 }
 
-/// Painlevé's paradox for a λ + b|λ| = c (SPEC §4): two solutions for c > 0, none for c < 0.
+/// Painlevé's paradox for a λ + b|λ| = c (docs/model.md §4): two solutions for c > 0, none for c < 0.
 inline std::string painleve_message(double a, double b, double c) {
   return "Painlevé's paradox: a λ + b|λ| = c has " +
          std::string(c > 0 ? "two admissible solutions" : "no admissible solution") + " (a = " + short_number(a) +
