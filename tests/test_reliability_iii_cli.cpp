@@ -259,3 +259,93 @@ TEST(ReliabilityIIICli, TheFailureEventHasTheTipOfTheLastState) {
   EXPECT_EQ((*failure)[ey], history.back()[hy]);
   fs::remove_all(dir);
 }
+
+// A key named with one word of the real one ("hub.rpm") or in the wrong section gets the key it
+// meant; a value far outside what brushes, seals and blades use (a length in millimetres typed as
+// metres) runs, with one warning line naming the key, the value and the usual range.
+TEST(ReliabilityIIICli, AMistypedKeyOrAnImplausibleValueIsSaidInOneLine) {
+  CliRun r = cli("impact --set hub.rpm=1000");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--set hub.rpm: unknown key (did you mean hub.speed_rpm?)"), std::string::npos) << r.err;
+  r = cli("impact --set surface.damping_ratio=0.1");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("(did you mean beam.damping_ratio?)"), std::string::npos) << r.err;
+  r = cli("impact --json --set beam.length_m=63.5 --set hub.radius_m=63.5");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(lines(r.err), 2) << r.err;
+  EXPECT_NE(r.err.find("rotbeam: warning: beam.length_m = 63.5 m is outside the usual [0.001, 2] m"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("hub.radius_m = 63.5 m"), std::string::npos) << r.err;
+  r = cli("impact --json");  // the thesis's filament: nothing to say
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(r.err, "");
+}
+
+// The impact's JSON gives the e its law used beside Table 5-3's ratio −V_X⁺/V_X⁻ (they differ for a
+// Coulomb impact, whose e is energetic), and its tangential impulse, within the friction cone; a run's
+// events.csv has the same tangential impulse for every impact.
+TEST(ReliabilityIIICli, AnImpactSaysItsRestitutionAndItsTangentialImpulse) {
+  for (const std::string friction : {"none", "coulomb"}) {
+    // A flexible start: the rigid start's straight filament has ∇C ∥ ∂V_t/∂q̇, where friction has no
+    // motion of its own and the impact is frictionless (docs/model.md, "Frictional impacts").
+    const CliRun r = cli("impact --json --set hub.speed_rpm=1000 --set surface.friction=0.4 "
+                         "--set initial.modal_velocity=[2,0,0,0,0] --set impact.friction=" + friction);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    const double e = j["restitution_used"].get<double>(), p = j["impulse_n_s"].get<double>(),
+                 pt = j["tangential_impulse_n_s"].get<double>();
+    EXPECT_GT(e, 0.0);
+    EXPECT_LT(e, 1.0);
+    EXPECT_LE(std::abs(pt), 0.4 * std::abs(p) * (1 + 1e-12)) << friction;
+    if (friction == "none") {
+      EXPECT_EQ(pt, 0.0);
+      EXPECT_NEAR(j["restitution"].get<double>(), e, 1e-12);  // Newton's e for a frictionless impact
+    } else {
+      EXPECT_GT(std::abs(pt), 0.0);
+    }
+  }
+  const fs::path dir = fresh("tangential");
+  const CliRun r = cli("run --quiet --set hub.speed_rpm=3000 --set impact.friction=coulomb -o " + dir.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto rows = csv_rows(dir / "events.csv");
+  const std::size_t kind = column(rows[0], "kind"), p = column(rows[0], "impulse_n_s"),
+                    pt = column(rows[0], "tangential_impulse_n_s");
+  ASSERT_LT(pt, rows[0].size());
+  int impacts = 0;
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    if (rows[i][kind] != "impact") continue;
+    ++impacts;
+    EXPECT_LE(std::abs(std::stod(rows[i][pt])), 0.4 * std::abs(std::stod(rows[i][p])) * (1 + 1e-12));
+  }
+  EXPECT_GT(impacts, 0);
+  fs::remove_all(dir);
+}
+
+// The validity of the model reaches where a brush's and a sweep's reader looks: a brush whose
+// filaments bend past the warning ratio says so (stdout, summary.json `validity` and
+// `max_tip_deflection_ratio`), and a sweep's case that ran at the edge has it in its message.
+TEST(ReliabilityIIICli, ABrushAndASweepSayWhenTheirFilamentsLeaveTheModelsValidity) {
+  const fs::path brush = fresh("validity_brush");
+  CliRun r = cli("brush --quiet --set brush.filaments=2 --set beam.damping_ratio=0.05 -o " + brush.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("filaments bend past simulation.deflection_warning_ratio = 0.1"), std::string::npos) << r.out;
+  std::ifstream in(brush / "summary.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["validity"], "edge");
+  EXPECT_GT(j["max_tip_deflection_ratio"].get<double>(), 0.1);
+  fs::remove_all(brush);
+
+  const fs::path sweep = fresh("validity_sweep");
+  r = cli("sweep --quiet --vary surface.depth_fraction=0.02,0.0002 -o " + sweep.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto rows = csv_rows(sweep / "sweep.csv");
+  ASSERT_EQ(rows.size(), 3u);
+  const std::size_t message = column(rows[0], "message");
+  ASSERT_LT(message, rows[0].size());
+  // The base case bends to about a fifth of its length; at a hundredth of its depth to 0.087 of it.
+  std::string first = rows[1].at(message);
+  if (!first.empty() && first[0] == '"') first.erase(0, 1);  // quoted where the message holds a comma
+  EXPECT_EQ(first.rfind("validity edge: tip deflection exceeds 0.1", 0), 0u) << first;
+  EXPECT_TRUE(rows[2].size() <= message || rows[2][message].empty()) << rows[2][message];
+  fs::remove_all(sweep);
+}

@@ -125,7 +125,8 @@ TEST(Sweep, RunsResumesAndIsolatesFailures) {
   EXPECT_EQ(second.failed, 2);
   EXPECT_EQ(second.results[0].status, SweepStatus::failed);
   EXPECT_TRUE(second.results[0].resumed);
-  EXPECT_NE(second.results[0].message.find("impacts: "), std::string::npos) << second.results[0].message;
+  EXPECT_EQ(second.results[0].message.rfind("impacts at t = ", 0), 0u) << second.results[0].message;  // kind, where, why
+  EXPECT_NE(second.results[0].message.find(" deg: "), std::string::npos) << second.results[0].message;
   EXPECT_NE(second.results[0].message.find("(computed by an earlier run)"), std::string::npos);
   EXPECT_EQ(second.results[2].status, SweepStatus::resumed);
   const std::string again = slurp(fs::path(dir) / "sweep.csv");

@@ -26,7 +26,11 @@ void CaseOptions::add_to(CLI::App& app) {
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
 }
 
-Config CaseOptions::load() const { return load_config(config_path, overrides); }
+Config CaseOptions::load() const {
+  Config c = load_config(config_path, overrides);
+  for (const std::string& w : plausibility_warnings(c)) std::cerr << "rotbeam: warning: " << w << "\n";
+  return c;
+}
 
 Config CaseOptions::load_filament(const std::string& command) const {
   Config c = load();

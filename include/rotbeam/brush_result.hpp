@@ -6,6 +6,7 @@
 #include "rotbeam/force_record.hpp"
 #include "rotbeam/ledger.hpp"
 #include "rotbeam/outcome.hpp"
+#include "rotbeam/pass.hpp"
 
 #include <cmath>
 #include <optional>
@@ -42,6 +43,7 @@ struct FilamentSteadyState {
   double contact_time_s = 0;            // per revolution
   double peak_normal_force_n = 0;       // over the orbit, at any instant (0 for impacts alone)
   double max_tip_deflection_ratio = 0;  // over the orbit
+  Validity validity = Validity::within;  // of its whole run (pass.hpp)
   double first_contact_deg = NAN, last_contact_deg = NAN;  // relative angle of its first and last delivery of momentum
   double along_min_m = NAN, along_max_m = NAN;             // where its tip touched, along the surface
   // The ledger per revolution (means over the orbit; ledger.hpp) and its largest residual [J].
@@ -72,6 +74,10 @@ struct BrushSummary {
   // normal force per filament over the static tip force that bends the nominal cantilever by the depth).
   double depth_ratio = 0, speed_ratio = 0, force_ratio = 0;
   double bin_deg = 0;
+  // The largest |y_t|/L of the finished filaments' orbits, and the worst of their runs' validity
+  // (pass.hpp; docs/model.md, "Validity of a pass").
+  double max_tip_deflection_ratio = 0;
+  Validity validity = Validity::within;
   double wall_time_s = 0;
   std::optional<NumericalFailure> failure;  // the first filament's failure (or the interruption), if any
   int failed_filament = -1;                 // its index

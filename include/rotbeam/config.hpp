@@ -85,6 +85,11 @@ const std::vector<std::string>& config_keys();
 /// null), "allowed" (the accepted values in words) and "doc" (one line).
 nlohmann::ordered_json describe_config_keys();
 
+/// One line per key whose value lies outside the range brushes, seals and rotating blades use (the
+/// key table's plausible range): "KEY = VALUE UNIT is outside the usual [LO, HI] UNIT …". The value is
+/// accepted; the command line prints these as warnings.
+std::vector<std::string> plausibility_warnings(const Config& config);
+
 /// Throws ConfigError "<flag> KEY: unknown key (did you mean …?)" unless KEY is a configuration key.
 void require_known_key(const std::string& key, const std::string& flag);
 

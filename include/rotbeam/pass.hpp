@@ -39,6 +39,7 @@ struct PassEvent {
   double t = 0, theta = 0, y_tip = 0;
   EventKind kind = EventKind::end;
   double vx_before = NAN, vx_after = NAN, restitution = NAN, impulse = NAN;
+  double tangential_impulse = NAN;  // impacts: P_t along the surface's tangent [N s] (0 without friction)
   double hub_work = NAN;  // impacts: the work the hub does during the impact [J]
   std::string detail;
 };

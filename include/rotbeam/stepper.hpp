@@ -15,6 +15,7 @@
 #include "rotbeam/pass_options.hpp"
 #include "rotbeam/state.hpp"
 
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -26,6 +27,9 @@ namespace rotbeam {
 struct StepIntegrals {
   LedgerValues integral;
   double peak_normal_force = 0;  // the largest F_n over the step, its interior included [N]
+  // The largest tip deflection |y_t| [m] inside the step where it lies between its ends (found on the
+  // dense output), NaN where it does not or the scheme keeps no dense output: the validity's maximum.
+  double peak_tip_deflection = std::numeric_limits<double>::quiet_NaN();
 };
 
 enum class Root {

@@ -172,6 +172,20 @@ def warning_line(summary):
         f"\n{len(warnings)} warnings: " + "; ".join(w.split(":")[0] for w in warnings)
 
 
+def validity_note(summary):
+    """A title's line on the model's validity when the pass left it (summary.json `validity` "edge" or
+    "outside"; docs/model.md "Validity of a pass"), empty within it."""
+    validity = summary.get("validity", "within")
+    if validity == "within":
+        return ""
+    ratio = summary.get("max_tip_deflection_ratio")
+    limit = summary.get("config", {}).get("simulation", {}).get("deflection_warning_ratio", 0.1)
+    how = f"max |y_t|/L = {ratio:.3g} > {limit:g}" if isinstance(ratio, (int, float)) else "see the warnings"
+    what = ("outside the model's geometry: not physical" if validity == "outside"
+            else "the quadratic foreshortening at the edge of its validity")
+    return f"\nvalidity {validity}: {how}, {what} (docs/model.md §10)"
+
+
 def value_text(v):
     """A sweep value as it was meant: 550 and 0.1, not 550.0 (numbers with %g; others as written)."""
     if isinstance(v, (float, np.floating)):

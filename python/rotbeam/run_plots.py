@@ -10,7 +10,7 @@ import math
 from pathlib import Path
 
 # rotbeam._figures first: where matplotlib is missing it says so in one line.
-from ._figures import DEG, case_title, draw_all, save_figures, warning_line
+from ._figures import DEG, case_title, draw_all, save_figures, validity_note, warning_line
 
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
@@ -88,7 +88,8 @@ def force_figure(folder, h, events, summary, title):
     else:
         peak = "no sustained contact, so no instantaneous peak force"
     ax.set_title(f"{title}\n{s['impacts']} impacts, {s['contact_episodes']} contact episodes, "
-                 f"normal impulse {1e3 * s['normal_impulse_n_s']:.4g} mN·s; {peak}", fontsize=9)
+                 f"normal impulse {1e3 * s['normal_impulse_n_s']:.4g} mN·s; {peak}" + validity_note(s), fontsize=9,
+                 color="C3" if validity_note(s) else "k")
 
     # The mean force over bins of hub angle: momentum per time, impacts and sustained contact alike.
     bins, source = force_bins(folder, h, events, summary)
@@ -228,7 +229,8 @@ def modal_figure(h, events, summary, title):
     for a in (a1, a2):
         a.grid(alpha=0.3)
         a.legend(fontsize=7, ncol=min(n, 6))
-    a1.set_title(f"Modal coordinates — {title}", fontsize=10)
+    a1.set_title(f"Modal coordinates — {title}" + validity_note(summary), fontsize=10,
+                 color="C3" if validity_note(summary) else "k")
     fig.tight_layout()
     return fig
 
@@ -294,7 +296,8 @@ def energy_figure(h, events, summary, title):
         a1.axvline(events["theta_deg"][i], color="C3", lw=0.4, alpha=0.5)
     a1.set_ylabel("h − h(0) (µJ)")
     a1.set_title(f"Jacobi integral h = T2 − T0 + U, the energy in the hub's rotating frame (red: impacts)\n"
-                 f"energy-audit residual {summary['energy_audit_residual']:.2e} — {title}", fontsize=9)
+                 f"energy-audit residual {summary['energy_audit_residual']:.2e} — {title}" + validity_note(summary),
+                 fontsize=9, color="C3" if validity_note(summary) else "k")
     ledger = impact_energy(h, events, summary)
     if ledger is not None:
         a1.text(0.01, 0.97, energy_note(ledger), transform=a1.transAxes, va="top", fontsize=7,
@@ -332,7 +335,8 @@ def impacts_figure(h, events, summary, title):
     a2.set_ylabel("restitution e")
     a2.set_ylim(-0.05, 1.05)
     a2.set_xlabel(f"hub angle θ ({DEG})")
-    a1.set_title(f"{len(imp)} impacts ({summary.get('plastic_impacts', 0)} plastic) — {title}", fontsize=9)
+    a1.set_title(f"{len(imp)} impacts ({summary.get('plastic_impacts', 0)} plastic) — {title}" + validity_note(summary),
+                 fontsize=9, color="C3" if validity_note(summary) else "k")
     for a in (a1, a2):
         a.grid(alpha=0.3)
     fig.tight_layout()

@@ -380,9 +380,10 @@ private:
     if (!std::isnan(root)) {
       stepper_.calc_state(root, xs_);
       unpack(root, xs_);
+      out.integrals.integral[LedgerTerm::damping_work] = xs_[2 * n_ + kDampingWork] - free_damping_;
+      out.integrals.peak_tip_deflection = interior_deflection_peak(ta, root, s.q, q_);  // (overwrites xs_)
       t_ = root;
       store(s);
-      out.integrals.integral[LedgerTerm::damping_work] = xs_[2 * n_ + kDampingWork] - free_damping_;
       out.status = StepStatus::root;
       out.root = Root::gap_closes;
       return out;
@@ -392,6 +393,7 @@ private:
     unpack(te, xe);
     out.integrals.integral[LedgerTerm::damping_work] = xe[2 * n_ + kDampingWork] - free_damping_;
     free_damping_ = xe[2 * n_ + kDampingWork];
+    out.integrals.peak_tip_deflection = interior_deflection_peak(ta, te, s.q, q_);
     if (!q_.allFinite() || !qd_.allFinite()) return failed(FailureKind::non_finite, "the free-flight state became non-finite");
     t_ = te;
     const double c_now = gap(sys_.beam, sys_.surface, t_, q_);
@@ -505,6 +507,7 @@ private:
     const State& xe = at_dense ? xs_ : stepper_.current_state();
     unpack(t_event, xe);
     const LedgerValues total = ledger_of(xe);
+    out.integrals.peak_tip_deflection = interior_deflection_peak(ta, t_event, s.q, q_);
     out.integrals.integral = constraint ? total : total - marks_;
     if (!constraint) marks_ = total;
     if (constraint) project(t_event, locked);
@@ -543,6 +546,30 @@ private:
     boost::uintmax_t iters = 100;
     const auto found = boost::math::tools::brent_find_minima(minus, lo, hi, kBrentBits, iters);
     return std::max(peak, -found.second);
+  }
+
+  // The largest tip deflection |y_t| [m] on the dense output over (ta, tb) where a sample inside beats
+  // both ends (the states q_a, q_b there; then refined by Brent between that sample's neighbours),
+  // else NaN: the maximum between accepted steps that the validity's max |y_t|/L reports. Call it once
+  // the step's end is unpacked: it uses xs_, pq_, pqd_.
+  double interior_deflection_peak(double ta, double tb, const Eigen::VectorXd& q_a, const Eigen::VectorXd& q_b) {
+    if (!(tb > ta)) return NAN;
+    const auto at = [&](double t) {
+      stepper_.calc_state(t, xs_);
+      physical(t, xs_, pq_, pqd_);
+      return sys_.beam.tip_deflection(pq_);
+    };
+    double best = std::max(sys_.beam.tip_deflection(q_a), sys_.beam.tip_deflection(q_b)), best_t = NAN;
+    const double h = (tb - ta) / kSamplesPerStep;
+    for (int k = 1; k < kSamplesPerStep; ++k) {
+      const double t = ta + h * k, d = at(t);
+      if (d > best) best = d, best_t = t;
+    }
+    if (std::isnan(best_t)) return NAN;
+    boost::uintmax_t iters = 100;
+    const auto found = boost::math::tools::brent_find_minima([&](double t) { return -at(t); }, std::max(ta, best_t - h),
+                                                             std::min(tb, best_t + h), kBrentBits, iters);
+    return std::max(best, -found.second);
   }
 
   static constexpr int kMaxRoots = 8;  // root functions of a contact phase (ContactLaw::roots)

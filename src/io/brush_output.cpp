@@ -125,6 +125,8 @@ nlohmann::json brush_summary_json(const BrushResult& result, const Config& confi
         {"force_ratio", "mean normal force per filament over 3EI·pL/L³, the static tip force that bends the "
                         "nominal cantilever by the depth"}}}};
   j["wall_time_s"] = s.wall_time_s;
+  j["max_tip_deflection_ratio"] = s.max_tip_deflection_ratio;
+  j["validity"] = validity_name(s.validity);
   j["warnings"] = s.warnings;
   if (s.failure)
     j["failure"] = {{"kind", failure_name(s.failure->kind)},

@@ -71,6 +71,38 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
 }
 
 // " (did you mean KEY?)" for the key nearest to `key`, or "".
+// The words of a key's name ("speed_rpm" → speed, rpm).
+std::vector<std::string> name_words(const std::string& name) {
+  std::vector<std::string> words;
+  std::stringstream in(name);
+  for (std::string w; std::getline(in, w, '_');)
+    if (!w.empty()) words.push_back(w);
+  return words;
+}
+
+// A key whose name holds every word of `key`'s name, in the same section ("hub.rpm" → hub.speed_rpm;
+// the shortest such), or a key of the same name in another section ("surface.damping_ratio" →
+// beam.damping_ratio); "" for none.
+std::string word_suggestion(const std::string& key) {
+  const auto dot = key.find('.');
+  if (dot == std::string::npos || dot + 1 >= key.size()) return {};
+  const std::string section = key.substr(0, dot), name = key.substr(dot + 1);
+  const std::vector<std::string> words = name_words(name);
+  std::string best;
+  for (const std::string& k : config_keys()) {
+    const auto kd = k.find('.');
+    if (kd == std::string::npos) continue;
+    const std::string ks = k.substr(0, kd), kn = k.substr(kd + 1);
+    if (kn == name) return k;
+    if (ks != section || words.empty()) continue;
+    const std::vector<std::string> kw = name_words(kn);
+    const bool all = std::all_of(words.begin(), words.end(),
+                                 [&](const std::string& w) { return std::find(kw.begin(), kw.end(), w) != kw.end(); });
+    if (all && (best.empty() || k.size() < best.size())) best = k;
+  }
+  return best;
+}
+
 std::string suggestion(const std::string& key) {
   std::string best;
   std::size_t best_d = 4;
@@ -81,6 +113,7 @@ std::string suggestion(const std::string& key) {
   if (best.empty())  // a truncated name: "hub.speed" for "hub.speed_rpm"
     for (const std::string& k : config_keys())
       if (key.size() >= 3 && k.rfind(key, 0) == 0) return " (did you mean " + k + "?)";
+  if (best.empty()) best = word_suggestion(key);
   return best.empty() ? std::string() : " (did you mean " + best + "?)";
 }
 
@@ -359,6 +392,27 @@ Config revalidate(const Config& config) {
     const Value v = k.get(config);
     return GivenValue{v, config_detail::render(v)};
   });
+}
+
+std::vector<std::string> plausibility_warnings(const Config& config) {
+  std::vector<std::string> out;
+  const auto text = [](double v) {
+    std::ostringstream s;
+    s.precision(6);
+    s << v;
+    return s.str();
+  };
+  for (const Key& k : key_table()) {
+    if (!(k.plausible_lo <= k.plausible_hi) || !k.written(config)) continue;
+    const Value v = k.get(config);
+    if (!v.is_number()) continue;
+    const double x = v.get<double>();
+    if (x >= k.plausible_lo && x <= k.plausible_hi) continue;
+    const std::string unit = k.unit.empty() ? "" : " " + k.unit;
+    out.push_back(k.name + " = " + text(x) + unit + " is outside the usual [" + text(k.plausible_lo) + ", " +
+                  text(k.plausible_hi) + "]" + unit + " of brushes, seals and blades: the run goes on; check the unit");
+  }
+  return out;
 }
 
 void require_known_key(const std::string& key, const std::string& flag) {

@@ -2,6 +2,7 @@
 // that describe a key, Config::to_json, config_keys() and describe_config_keys().
 #include "config_keys.hpp"
 
+#include <stdexcept>
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -336,6 +337,21 @@ std::vector<Key> make_table() {
   t.push_back(named<RestitutionSpeed>("compat.restitution_speed", {{"normal", RestitutionSpeed::normal}, {"full", RestitutionSpeed::full}},
                     "e from the normal approach speed (thesis text) or the full tip speed (its Appendix B)",
                     [](auto& c) -> auto& { return c.contact.impact.speed; }));
+  // Plausible ranges: the wires, hubs and speeds of brushes, brush seals and rotating blades.
+  const auto plausible = [&t](const std::string& name, double lo, double hi) {
+    for (Key& k : t)
+      if (k.name == name) {
+        k.plausible_lo = lo, k.plausible_hi = hi;
+        return;
+      }
+    throw std::logic_error("plausible range for " + name + ": no such key");
+  };
+  plausible("beam.length_m", 1e-3, 2.0);
+  plausible("beam.diameter_m", 1e-5, 2e-2);
+  plausible("hub.radius_m", 0.0, 2.0);
+  plausible("beam.density_kg_m3", 500.0, 25000.0);
+  plausible("beam.youngs_modulus_pa", 1e8, 1e12);
+  plausible("hub.speed_rpm", 1e-3, 1e5);  // slow speeds are legitimate (a slow-motion study): only the top
   return t;
 }
 

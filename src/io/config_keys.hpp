@@ -8,6 +8,7 @@
 #include "rotbeam/config.hpp"
 
 #include <functional>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -51,6 +52,10 @@ struct Key {
   std::function<Value(const Config&)> get;            // the value as Config::to_json writes it
   std::function<void(Config&, const Value&)> set;     // stores an accepted value
   std::function<bool(const Config&)> written;         // whether Config::to_json writes the key
+  // The values brushes, seals and rotating blades use (NaN: no such range): a value outside them is
+  // accepted with a one-line warning (plausibility_warnings), e.g. a length in millimetres typed as metres.
+  double plausible_lo = std::numeric_limits<double>::quiet_NaN();
+  double plausible_hi = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Every key, in documentation order.

@@ -15,9 +15,11 @@ nlohmann::json impact_json(const FirstImpactResult& r, const Config& config) {
   j["vx_after_m_s"] = im.vx_after;
   j["delta_vx_m_s"] = im.vx_before - im.vx_after;
   j["restitution"] = -im.vx_after / im.vx_before;
+  j["restitution_used"] = im.restitution;
   j["vy_before_m_s"] = im.vy_before;
   j["vy_after_m_s"] = im.vy_after;
   j["impulse_n_s"] = im.impulse;
+  j["tangential_impulse_n_s"] = im.tangential_impulse;
   j["energy_loss_j"] = im.relative_energy_loss;
   j["steps"] = r.steps;
   j["rhs_evaluations"] = r.rhs_evaluations;

@@ -58,6 +58,8 @@ std::vector<OutputFile> make_files() {
                     optional("vx_after_m_s", "m/s", "normal speed Ċ after an impact"),
                     optional("restitution", "1", "the restitution an impact used"),
                     optional("impulse_n_s", "N s", "an impact's impulse along the surface's normal"),
+                    optional("tangential_impulse_n_s", "N s",
+                             "an impact's impulse along the surface's tangent (friction's; 0 without it)"),
                     optional("hub_work_j", "J", "the hub's work during an impact"),
                     {"detail", "", ColumnKind::text, "the event in words", {}}}});
   const std::vector<OutputColumn> bins_head = {

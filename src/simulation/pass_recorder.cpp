@@ -132,6 +132,7 @@ void PassRecorder::impact(double t, const Eigen::VectorXd& q, const Eigen::Vecto
   e.vx_after = r.vx_after;
   e.restitution = r.restitution;
   e.impulse = r.impulse;
+  e.tangential_impulse = r.tangential_impulse;
   e.hub_work = v.hub_work;
   e.detail = r.tangential            ? "tangential: an impact without collision at a Painlevé point, the slip stopped"
              : r.restitution == 0.0 ? "plastic"

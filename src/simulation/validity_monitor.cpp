@@ -17,6 +17,9 @@ void ValidityMonitor::start(double t, const Eigen::VectorXd& q, const Eigen::Vec
 
 void ValidityMonitor::step(const StepView& v) {
   track(v.t, v.q);
+  // The largest deflection between the step's ends, where the stepper found one on its dense output.
+  if (std::isfinite(v.integrals.peak_tip_deflection))
+    track_ratio(v.t, v.q, v.integrals.peak_tip_deflection / ctx_.system.beam.beam_length());
   if (v.phase == Phase::contact) track_penetration(v.t, v.q);
 }
 
@@ -38,9 +41,13 @@ std::string ValidityMonitor::breach_message() const {
 
 void ValidityMonitor::track(double t, const Eigen::VectorXd& q) {
   const BeamModel& beam = ctx_.system.beam;
+  track_ratio(t, q, beam.tip_deflection(q) / beam.beam_length());
+}
+
+void ValidityMonitor::track_ratio(double t, const Eigen::VectorXd& q, double ratio) {
+  const BeamModel& beam = ctx_.system.beam;
   const PassOptions& o = ctx_.options;
   PassSummary& s = ctx_.result.summary;
-  const double ratio = beam.tip_deflection(q) / beam.beam_length();
   if (ratio > s.max_tip_deflection_ratio) s.max_tip_deflection_ratio = ratio;
   rev_max_ratio_ = std::max(rev_max_ratio_, ratio);
   // The deflection warning is the foreshortening model's (docs/model.md §10): the elastica's geometry is exact.

@@ -25,6 +25,8 @@ public:
 
 private:
   void track(double t, const Eigen::VectorXd& q);
+  // |y_t|/L = ratio at t: the state q's own, or a maximum inside the step that ends at (t, q).
+  void track_ratio(double t, const Eigen::VectorXd& q, double ratio);
   void track_penetration(double t, const Eigen::VectorXd& q);
 
   PassContext& ctx_;

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <sstream>
 #include <cstdio>
 #include <deque>
 #include <map>
@@ -104,6 +105,7 @@ FilamentSteadyState run_distinct(const Config& config, const std::vector<const B
   s.failure = r.failure;
   if (r.failure) return s;
   s.ran = true;
+  s.validity = r.summary.validity;
   s.steady = r.summary.steady_state.reached;
   const std::size_t m = s.steady ? static_cast<std::size_t>(std::max(1, r.summary.steady_state.period_revolutions)) : 1;
   const auto orbit = ring.last(m);
@@ -329,6 +331,8 @@ BrushResult run_brush(const Config& config, const BrushOptions& options) {
       continue;
     }
     (d.steady ? s.steady : s.not_steady) += 1;
+    s.max_tip_deflection_ratio = std::max(s.max_tip_deflection_ratio, d.max_tip_deflection_ratio);
+    if (static_cast<int>(d.validity) > static_cast<int>(s.validity)) s.validity = d.validity;
     s.mean_normal_force_n += d.mean_normal_force_n;
     s.mean_tangential_force_n += d.mean_tangential_force_n;
     s.mean_hub_torque_n_m += d.mean_hub_torque_n_m;
@@ -381,6 +385,22 @@ BrushResult run_brush(const Config& config, const BrushOptions& options) {
                          " filaments did not reach their steady state within simulation.revolutions = " +
                          std::to_string(config.simulation.revolutions) +
                          ": their last revolution is used (add beam.damping_ratio, or raise simulation.revolutions)");
+  if (s.validity != Validity::within) {
+    int beyond = 0;
+    for (const BrushFilament& f : result.filaments) {
+      const FilamentSteadyState& d = result.distinct[f.group];
+      beyond += d.ran && d.validity != Validity::within;
+    }
+    std::ostringstream w;
+    w.precision(3);
+    w << beyond << " of " << s.steady + s.not_steady << " filaments bend past simulation.deflection_warning_ratio = "
+      << config.simulation.deflection_warning_ratio << " of their length (max |y_t|/L = " << s.max_tip_deflection_ratio
+      << ")"
+      << (s.validity == Validity::outside ? ", some beyond the model's geometry (their results are not physical)"
+                                          : ", at the edge of the quadratic foreshortening")
+      << " (docs/model.md §10): run the brush with beam.theory = \"elastica\" to see the difference";
+    s.warnings.push_back(w.str());
+  }
   if (s.reaching < s.filaments)
     s.warnings.push_back(std::to_string(s.filaments - s.reaching) +
                          " filaments are too short to reach the surface and deliver nothing");

@@ -131,6 +131,24 @@ std::string where_in_pass(double t_s, double theta_deg) {
   return s.str();
 }
 
+// The message of a case that finished beyond the model's validity (summary.json `validity` "edge" or
+// "outside"), with the warning that says how far; "" within it: a sweep's reader sees it in sweep.csv.
+std::string validity_message(const nlohmann::json& summary) {
+  if (!summary.is_object() || !summary.contains("validity")) return {};
+  const nlohmann::json& validity = summary["validity"];
+  if (!validity.is_string() || validity == "within") return {};
+  std::string message = "validity " + validity.get<std::string>();
+  if (summary.contains("warnings"))
+    for (const nlohmann::json& w : summary["warnings"]) {
+      if (!w.is_string()) continue;
+      const std::string text = w.get<std::string>();
+      if (text.find("|y_t|/L") != std::string::npos || text.find("tip deflection") != std::string::npos ||
+          text.find("geometry") != std::string::npos)
+        return message + ": " + text;
+    }
+  return message;
+}
+
 // Status and message of a case from how its pass or brush ended.
 void set_outcome(SweepCaseResult& res, const std::optional<NumericalFailure>& failure, const std::string& where) {
   if (!failure)
@@ -139,7 +157,12 @@ void set_outcome(SweepCaseResult& res, const std::optional<NumericalFailure>& fa
     res.status = SweepStatus::interrupted;
   else
     res.status = SweepStatus::failed;
-  if (failure) res.message = std::string(failure_name(failure->kind)) + where + where_in_pass(failure->t, failure->theta * 180.0 / M_PI) + ": " + failure->message;
+  if (failure) {
+    res.message = std::string(failure_name(failure->kind)) + where +
+                  where_in_pass(failure->t, failure->theta * 180.0 / M_PI) + ": " + failure->message;
+    return;
+  }
+  res.message = validity_message(res.summary);
 }
 
 // Writes `text` to the temporary file `path` (not atomically: nothing reads it under that name but
@@ -552,6 +575,7 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
                                       " (computed by an earlier run)";
         } else {
           report.results[i].status = SweepStatus::resumed;
+          report.results[i].message = validity_message(j);
         }
         finished = true;
       }

@@ -409,3 +409,32 @@ def test_a_picture_named_through_a_link_replaces_the_linked_file_and_keeps_the_l
     assert fifo.is_fifo()
     plt.close(fig)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["link.png", "pipe.png", "real.png"]
+
+
+def _texts(fig):
+    """Every title and suptitle of a figure."""
+    texts = [ax.get_title() for ax in fig.axes]
+    if fig._suptitle is not None:
+        texts.append(fig._suptitle.get_text())
+    return " ".join(texts)
+
+
+def test_every_picture_of_a_run_says_when_the_pass_left_the_models_validity(runs, tmp_path):
+    # The base case bends past 0.1 L ("edge"): each of the five pictures says so in a title. At a
+    # hundredth of its depth the filament stays within, and no picture says anything of it.
+    figures = plots.run_figures(runs["base"])
+    try:
+        for name, fig in figures:
+            assert "validity edge: max |y_t|/L = " in _texts(fig) or "tip deflection exceeds" in _texts(fig), name
+    finally:
+        for _, fig in figures:
+            plt.close(fig)
+    folder = tmp_path / "within"
+    cli("run", "--set", "surface.depth_fraction=0.0002", "-o", str(folder), "--quiet")
+    figures = plots.run_figures(folder)
+    try:
+        for name, fig in figures:
+            assert "validity" not in _texts(fig) and "tip deflection exceeds" not in _texts(fig), name
+    finally:
+        for _, fig in figures:
+            plt.close(fig)
