@@ -131,13 +131,94 @@ def save_figures(figures, out):
     return written
 
 
+# Legend locations in the order they are tried (matplotlib's codes): the corners first.
+_LEGEND_LOCATIONS = (1, 2, 4, 3, 9, 8, 7, 6, 10)
+
+
+def data_under(bbox, axes, renderer):
+    """Whether anything drawn as data in `axes` (lines, markers, stems, bars, steps, scatter) lies in
+    the display-space box `bbox`; reference lines spanning an axis (axhline, axvline) do not count."""
+    from matplotlib.collections import LineCollection
+    from matplotlib.path import Path as MPath
+
+    pad = bbox.expanded(1.0, 1.0)
+    for ax in axes:
+        for line in ax.get_lines():
+            if line.get_transform() != ax.transData or not line.get_visible():
+                continue
+            xy = np.asarray(line.get_xydata(), float)
+            xy = xy[np.all(np.isfinite(xy), axis=1)]
+            if len(xy) == 0:
+                continue
+            disp = ax.transData.transform(xy)
+            if any(pad.contains(x, y) for x, y in disp):
+                return True
+            if line.get_linestyle() not in ("None", "", " ") and len(disp) > 1 and \
+                    MPath(disp).intersects_bbox(pad, filled=False):
+                return True
+        for coll in ax.collections:
+            if not coll.get_visible():
+                continue
+            if isinstance(coll, LineCollection):
+                for seg in coll.get_segments():
+                    seg = np.asarray(seg, float)
+                    if len(seg) > 1 and MPath(coll.get_transform().transform(seg)).intersects_bbox(pad, filled=False):
+                        return True
+                continue
+            offsets = np.asarray(coll.get_offsets(), float)
+            if offsets.size:
+                disp = coll.get_offset_transform().transform(offsets)
+                if any(pad.contains(x, y) for x, y in disp if np.isfinite(x) and np.isfinite(y)):
+                    return True
+        for patch in ax.patches:
+            if not patch.get_visible():
+                continue
+            path = patch.get_transform().transform_path(patch.get_path())
+            if len(path.vertices) and path.intersects_bbox(pad, filled=bool(patch.get_fill())):
+                return True
+    return False
+
+
+def _axes_sharing(ax):
+    """ax and its twins (axes at the same place in the figure)."""
+    return [a for a in ax.figure.axes if a is ax or np.allclose(a.get_position().bounds, ax.get_position().bounds)]
+
+
+def keep_legends_off_data(fig):
+    """Moves every legend of `fig` to the first location where it covers no data (a corner first),
+    or, where every location inside covers some, outside its axes on the right (and lays the figure
+    out again)."""
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    moved_out = False
+    for ax in fig.axes:
+        legend = ax.get_legend()
+        if legend is None:
+            continue
+        axes = _axes_sharing(ax)
+        if legend._bbox_to_anchor is not None:
+            continue  # placed outside on purpose
+        for loc in (legend._loc,) + _LEGEND_LOCATIONS:
+            legend._set_loc(loc)
+            if not data_under(legend.get_window_extent(renderer), axes, renderer):
+                break
+        else:
+            legend._set_loc(2)
+            legend.set_bbox_to_anchor((1.01, 1.0), transform=ax.transAxes)
+            moved_out = True
+    if moved_out and not fig.get_constrained_layout():
+        fig.tight_layout()
+
+
 def draw_all(drawings):
-    """[(name, figure)] of [(name, function drawing it)], every one drawn before any is written;
-    the ones drawn are closed when one fails."""
+    """[(name, figure)] of [(name, function drawing it)], every one drawn before any is written, with
+    every legend kept off the data (keep_legends_off_data); the ones drawn are closed when one fails."""
     figures = []
     try:
         for name, draw in drawings:
-            figures.append((name, draw()))
+            fig = draw()
+            keep_legends_off_data(fig)
+            figures.append((name, fig))
     except BaseException:
         for _, fig in figures:
             plt.close(fig)

@@ -438,3 +438,45 @@ def test_every_picture_of_a_run_says_when_the_pass_left_the_models_validity(runs
     finally:
         for _, fig in figures:
             plt.close(fig)
+
+
+def _data_points(ax):
+    """Display coordinates of every data vertex drawn in ax: line points, markers, stems' ends, bars'
+    and steps' corners (reference lines across the axes excluded)."""
+    points = []
+    for line in ax.get_lines():
+        if line.get_transform() == ax.transData:
+            points.append(ax.transData.transform(np.asarray(line.get_xydata(), float)))
+    for coll in ax.collections:
+        if isinstance(coll, LineCollection):
+            for seg in coll.get_segments():
+                points.append(coll.get_transform().transform(np.asarray(seg, float)))
+        elif len(coll.get_offsets()):
+            points.append(coll.get_offset_transform().transform(np.asarray(coll.get_offsets(), float)))
+    for patch in ax.patches:
+        points.append(patch.get_transform().transform(patch.get_path().vertices))
+    points = np.concatenate(points) if points else np.empty((0, 2))
+    return points[np.all(np.isfinite(points), axis=1)]
+
+
+def test_no_legend_of_a_run_covers_its_data(runs):
+    # The base case's bottom panel hid its 2.03 N bin under the legend; every legend of every picture
+    # of both runs now lies where no data point is (checked on the vertices, independently of the
+    # placement's own test of lines crossing the box).
+    for case in ("base", "fast"):
+        figures = plots.run_figures(runs[case])
+        try:
+            for name, fig in figures:
+                renderer = fig.canvas.get_renderer()
+                for ax in fig.axes:
+                    legend = ax.get_legend()
+                    if legend is None:
+                        continue
+                    box = legend.get_window_extent(renderer)
+                    twins = [a for a in fig.axes if np.allclose(a.get_position().bounds, ax.get_position().bounds)]
+                    for a in twins:
+                        inside = [p for p in _data_points(a) if box.contains(*p)]
+                        assert not inside, f"{case} {name}: the legend covers {len(inside)} data points"
+        finally:
+            for _, fig in figures:
+                plt.close(fig)
