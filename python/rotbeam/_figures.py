@@ -281,8 +281,9 @@ MARKERS = ["o", "s", "^", "D", "v", "P", "X", "*"]
 def series_styles(series):
     """A distinct (colour, linestyle, marker) for every series, each a tuple of values: with two or more
     values per series and at most 10 × 4 combinations, the colour follows the first value and the
-    line style and marker the rest; otherwise series i gets colour i mod 10 and line style and marker
-    from i // 10 (distinct for any number of series)."""
+    line style and marker the rest; otherwise series i gets colour i mod 10, the marker of i // 10 and
+    a line style that changes from one series to the next, so that series that coincide stay visible
+    (distinct up to 80 series)."""
     firsts = list(dict.fromkeys(t[0] for t in series))
     rests = list(dict.fromkeys(t[1:] for t in series))
     styles = []
@@ -290,7 +291,10 @@ def series_styles(series):
         if len(t) > 1 and len(firsts) <= 10 and len(rests) <= len(LINESTYLES):
             c, k = firsts.index(t[0]), rests.index(t[1:])
         else:
-            c, k = i % 10, i // 10
+            c, block = i % 10, i // 10
+            styles.append({"color": f"C{c}", "linestyle": LINESTYLES[(i + block) % len(LINESTYLES)],
+                           "marker": MARKERS[block % len(MARKERS)]})
+            continue
         styles.append({"color": f"C{c}", "linestyle": LINESTYLES[k % len(LINESTYLES)],
                        "marker": MARKERS[k % len(MARKERS)]})
     return styles

@@ -114,28 +114,34 @@ def profile_figure(summary, profile):
 
 
 def filaments_figure(summary, filaments):
-    """brush_filaments.png: each filament's mean normal force against its length and its phase."""
+    """brush_filaments.png: each filament's mean normal force and its largest deflection |y_t|/L
+    against its length (and diameter where they scatter): what makes filaments differ. Their phase
+    cannot (every filament meets the same surface), so it is not drawn."""
     fig, (ax, ax2) = plt.subplots(1, 2, figsize=(12, 5))
     status = filaments["status"]
     groups = [("steady", "C0", "o"), ("not_steady", "C1", "s"), ("clear", "0.6", "x"), ("failed", "C3", "^"),
               ("error", "C3", "v"), ("interrupted", "C4", "D")]
+    diameters = np.asarray(filaments["diameter_m"], float)
+    by_diameter = np.ptp(diameters) > 1e-9 * np.max(diameters) if diameters.size else False
     for name, color, marker in groups:
         sel = status == name
         if not sel.any():
             continue
         label = f"{name.replace('_', ' ')} ({sel.sum()})"
-        ax.plot(filaments["length_m"][sel] * 1e3, filaments["mean_normal_force_n"][sel], marker, color=color, ms=4,
-                label=label, ls="none")
-        ax2.plot(np.mod(filaments["phase_deg"][sel], 360), filaments["mean_normal_force_n"][sel], marker,
-                 color=color, ms=4, label=label, ls="none")
-    ax.set_xlabel("filament length (mm)")
-    ax2.set_xlabel(f"filament phase ahead of the reference ({DEG})")
+        size = 3 + 6 * (diameters[sel] - diameters.min()) / np.ptp(diameters) if by_diameter else np.full(sel.sum(), 4.0)
+        for a, column in ((ax, "mean_normal_force_n"), (ax2, "max_tip_deflection_ratio")):
+            a.scatter(filaments["length_m"][sel] * 1e3, filaments[column][sel], s=size ** 2, marker=marker,
+                      color=color, label=label, linewidths=1)
+    limit = summary.get("config", {}).get("simulation", {}).get("deflection_warning_ratio", 0.1)
+    ax2.axhline(limit, color="C3", lw=0.8, ls="--", label=f"warning ratio {limit:g} (docs/model.md §10)")
+    ax.set_ylabel("mean normal force over a revolution (N)")
+    ax2.set_ylabel("largest tip deflection |y_t|/L over its orbit (1)")
     for a in (ax, ax2):
-        a.set_ylabel("mean normal force over a revolution (N)")
+        a.set_xlabel("filament length (mm)" + (" — marker size: diameter" if by_diameter else ""))
         a.grid(alpha=0.3)
         a.legend(fontsize=8)
-    fig.suptitle(_title(summary) + "\neach filament at its steady state (clear: too short to reach the surface)",
-                 fontsize=10)
+    fig.suptitle(_title(summary) + "\neach filament at its steady state (clear: too short to reach the surface); "
+                 "filaments differ by length and diameter, not by their phase", fontsize=10)
     fig.tight_layout()
     return fig
 

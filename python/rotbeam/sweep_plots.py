@@ -94,13 +94,15 @@ def metrics_figure(table, keys, ok, panels, title):
     styles = series_styles(groups) if rest else [{"color": "C0", "linestyle": "-", "marker": "o"}] * len(groups)
     fig, axes = plt.subplots(2, 3, figsize=(14, 7.5))
     for ax, (metric, scale, label) in zip(axes.flat, panels):
+        # A case without results is a gap in its line (NaN), never a segment drawn across it.
+        y = np.where(ok, np.asarray(table[metric], float), np.nan)
         for g, style in zip(groups, styles):
-            sel = ok.copy()
+            sel = np.ones(len(x), bool)
             for k, v in zip(rest, g):
                 sel &= table[k] == v
             order = np.argsort(x[sel].astype(float)) if x.dtype.kind == "f" else np.arange(sel.sum())
             label_g = ", ".join(f"{k} = {value_text(v)}" for k, v in zip(rest, g)) or None
-            ax.plot(x[sel][order], table[metric][sel][order] * scale, ms=4, label=label_g, **style)
+            ax.plot(x[sel][order], y[sel][order] * scale, ms=4, label=label_g, **style)
         ax.set_xlabel(first)
         ax.set_ylabel(label)
         ax.grid(alpha=0.3)

@@ -480,3 +480,21 @@ def test_no_legend_of_a_run_covers_its_data(runs):
         finally:
             for _, fig in figures:
                 plt.close(fig)
+
+
+def test_neighbouring_series_differ_in_line_style_and_a_failed_case_is_a_gap():
+    # One varied key besides the first: series that coincide (equal frictions' results) stay visible.
+    styles = plots.series_styles([(k,) for k in range(12)])
+    assert all(a["linestyle"] != b["linestyle"] for a, b in zip(styles, styles[1:]))
+    # A case without results breaks its series' line instead of being bridged.
+    from rotbeam import sweep_plots
+    table = {"case": np.arange(1, 4), "status": np.array(["done", "failed", "done"]),
+             "hub.speed_rpm": np.array([1000.0, 2000.0, 3000.0]), "impacts": np.array([3.0, np.nan, 5.0])}
+    ok = np.array([True, False, True])
+    fig = sweep_plots.metrics_figure(table, ["hub.speed_rpm"], ok, [("impacts", 1, "impacts")] * 6, "t")
+    try:
+        line = fig.axes[0].get_lines()[0]
+        y = np.asarray(line.get_ydata(), float)
+        assert len(y) == 3 and math.isnan(y[1]), y
+    finally:
+        plt.close(fig)
