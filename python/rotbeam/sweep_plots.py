@@ -93,9 +93,15 @@ def metrics_figure(table, keys, ok, panels, title):
         pass
     styles = series_styles(groups) if rest else [{"color": "C0", "linestyle": "-", "marker": "o"}] * len(groups)
     fig, axes = plt.subplots(2, 3, figsize=(14, 7.5))
-    for ax, (metric, scale, label) in zip(axes.flat, panels):
+    for ax, (metric, scale, label, *why_empty) in zip(axes.flat, panels):
         # A case without results is a gap in its line (NaN), never a segment drawn across it.
         y = np.where(ok, np.asarray(table[metric], float), np.nan)
+        if ok.any() and not np.isfinite(y).any():
+            ax.text(0.5, 0.5, why_empty[0] if why_empty else "no case has a value here", transform=ax.transAxes,
+                    ha="center", va="center", fontsize=9, wrap=True)
+            ax.set_yticks([])
+            if x.dtype.kind in "fiu" and len(x) > 1 and np.ptp(x.astype(float)) > 0:
+                ax.set_xlim(float(np.min(x)), float(np.max(x)))
         for g, style in zip(groups, styles):
             sel = np.ones(len(x), bool)
             for k, v in zip(rest, g):
@@ -122,8 +128,21 @@ def sweep_metrics_figure(table, keys, ok):
     panels = [("impacts", 1, "impacts"), ("contact_episodes", 1, "contact episodes"),
               ("last_separation_deg", 1, f"last separation ({DEG})"), peak,
               ("normal_impulse_n_s", 1e3, "normal impulse (mN·s)"), ("max_tip_deflection_ratio", 1, "max |y_t|/L")]
+    over = ""
+    last = table.get("last_revolution_impacts")
+    if last is not None and ok.any() and np.isfinite(np.asarray(last, float)[ok]).any():
+        # Runs over many revolutions (of lengths that may differ, and angles that grow without
+        # wrapping): the last complete revolution's metrics, comparable from case to case.
+        panels = [("last_revolution_impacts", 1, "impacts per revolution"),
+                  ("last_revolution_friction_work_j", 1e3, "friction work per revolution (mJ)"),
+                  ("steady_after_revolutions", 1, "revolutions to the steady state\n(0: not reached)",
+                   "no case searched for its steady state\n(simulation.until_steady = false)"),
+                  ("last_revolution_peak_normal_force_n", 1, "peak F_n in a revolution (N)"),
+                  ("last_revolution_normal_impulse_n_s", 1e3, "normal impulse per revolution (mN·s)"),
+                  ("last_revolution_max_tip_deflection_ratio", 1, "max |y_t|/L in a revolution")]
+        over = "; per revolution: each case's last complete one"
     return metrics_figure(table, keys, ok, panels,
-                          f"Sweep of {len(table['case'])} cases over {', '.join(keys)}{_cases_note(table, ok)}")
+                          f"Sweep of {len(table['case'])} cases over {', '.join(keys)}{over}{_cases_note(table, ok)}")
 
 
 def sweep_force_figure(folder, table, keys, ok, folders, runs=None):

@@ -498,3 +498,22 @@ def test_neighbouring_series_differ_in_line_style_and_a_failed_case_is_a_gap():
         assert len(y) == 3 and math.isnan(y[1]), y
     finally:
         plt.close(fig)
+
+
+def test_a_sweep_over_many_revolutions_draws_per_revolution_metrics(tmp_path):
+    # Runs over revolutions are compared by their last complete revolution, not whole-run totals (runs
+    # of different lengths) or an angle that grows without wrapping; a panel without values says why.
+    from rotbeam import sweep_plots
+    folder = tmp_path / "sweep"
+    cli("sweep", "--vary", "hub.speed_rpm=550,1000", "--set", "simulation.revolutions=2",
+        "--set", "beam.damping_ratio=0.03", "-o", str(folder), "--quiet")
+    table, keys, ok = sweep_plots.read_sweep(folder)
+    fig = sweep_plots.sweep_metrics_figure(table, keys, ok)
+    try:
+        labels = [ax.get_ylabel() for ax in fig.axes]
+        assert "impacts per revolution" in labels and not any("last separation" in label for label in labels)
+        assert "per revolution" in fig._suptitle.get_text()
+        empty = [ax for ax in fig.axes if not any(np.isfinite(line.get_ydata()).any() for line in ax.get_lines())]
+        assert empty and all(ax.texts for ax in empty)
+    finally:
+        plt.close(fig)
