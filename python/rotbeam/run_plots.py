@@ -87,9 +87,18 @@ def force_figure(folder, h, events, summary, title):
         peak = f"peak F_n {s['peak_normal_force_n']:.3g} N in sustained contact"
     else:
         peak = "no sustained contact, so no instantaneous peak force"
-    ax.set_title(f"{title}\n{s['impacts']} impacts, {s['contact_episodes']} contact episodes, "
-                 f"normal impulse {1e3 * s['normal_impulse_n_s']:.4g} mN·s; {peak}" + validity_note(s), fontsize=9,
-                 color="C3" if validity_note(s) else "k")
+    numbers = s
+    window = s.get("config", {}).get("output", {}).get("history_revolutions", 1)
+    last = s.get("last_revolution")
+    if isinstance(last, dict) and s.get("revolutions", 0) > 1 and window == 1:
+        # The panel draws the last revolution's history: its numbers, not the whole run's.
+        numbers = last
+        if has_contact:
+            peak = f"peak F_n {last['peak_normal_force_n']:.3g} N in sustained contact"
+        title += f"\nthe last of {s['revolutions']} revolutions (revolution {last['revolution']})"
+    ax.set_title(f"{title}\n{numbers['impacts']} impacts, {numbers['contact_episodes']} contact episodes, "
+                 f"normal impulse {1e3 * numbers['normal_impulse_n_s']:.4g} mN·s; {peak}" + validity_note(s),
+                 fontsize=9, color="C3" if validity_note(s) else "k")
 
     # The mean force over bins of hub angle: momentum per time, impacts and sustained contact alike.
     bins, source = force_bins(folder, h, events, summary)
