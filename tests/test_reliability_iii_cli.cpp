@@ -349,3 +349,18 @@ TEST(ReliabilityIIICli, ABrushAndASweepSayWhenTheirFilamentsLeaveTheModelsValidi
   EXPECT_TRUE(rows[2].size() <= message || rows[2][message].empty()) << rows[2][message];
   fs::remove_all(sweep);
 }
+
+// `theories` says where the foreshortening pass left its validity (the elastica is the reference).
+TEST(ReliabilityIIICli, TheoriesSaysTheForeshorteningPassesValidity) {
+  CliRun r = cli("theories");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("validity         foreshortening edge (max |y_t|/L = 0.247 > 0.1"), std::string::npos) << r.out;
+  r = cli("theories --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["foreshortening"]["validity"], "edge");
+  EXPECT_EQ(j["elastica"]["validity"], "within");
+  r = cli("theories --set surface.depth_fraction=0.0002");  // within: nothing to say
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.find("validity "), std::string::npos) << r.out;
+}

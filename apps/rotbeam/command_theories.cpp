@@ -34,6 +34,7 @@ nlohmann::json outcome_json(const Outcome& r) {
   return {{"last_separation_deg", s.last_separation_deg}, {"normal_impulse_n_s", s.ledger[LedgerTerm::normal_impulse]},
           {"peak_normal_force_n", s.peak_normal_force_n},  {"contact_time_s", s.contact_time_s},
           {"max_tip_deflection_ratio", s.max_tip_deflection_ratio},
+          {"validity", validity_name(s.validity)},
           {"impacts", s.impacts},                         {"contact_episodes", s.contact_episodes},
           {"wall_time_s", s.wall_time_s},                 {"failure", r.failure.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.failure)}};
 }
@@ -121,8 +122,19 @@ int run_theories(const TheoriesOptions& o) {
                 cell(s.max_tip_deflection_ratio, "%12.5f").c_str(), s.impacts, s.contact_episodes, s.wall_time_s,
                 out[k].failure.empty() ? "" : ("  stopped: " + out[k].failure).c_str());
   }
+  // Where the foreshortening pass left its validity, a line says so: the elastica is the reference.
+  const auto say_validity = [&]() {
+    const PassSummary& fore = out[0].summary;
+    if (fore.validity == Validity::within) return;
+    std::printf("validity         foreshortening %s (max |y_t|/L = %.3g > %g: %s; docs/model.md §10); the "
+                "elastica's geometry is exact at any deflection\n",
+                validity_name(fore.validity), fore.max_tip_deflection_ratio, config.simulation.deflection_warning_ratio,
+                fore.validity == Validity::outside ? "outside the model's geometry, not physical"
+                                                   : "the quadratic foreshortening at the edge of its validity");
+  };
   if (!comparable) {
     std::printf("%-16s not comparable: a pass stopped before its end\n", "elastica − fore");
+    say_validity();
     std::fflush(stdout);
     return report();
   }
@@ -131,6 +143,7 @@ int run_theories(const TheoriesOptions& o) {
               cell(100 * rel(b.peak_normal_force_n, a.peak_normal_force_n), "%+11.2f%%").c_str(),
               cell(100 * rel(b.contact_time_s, a.contact_time_s), "%+11.2f%%").c_str(),
               cell(b.max_tip_deflection_ratio - a.max_tip_deflection_ratio, "%+12.5f").c_str());
+  say_validity();
   return report();
 }
 
