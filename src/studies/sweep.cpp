@@ -22,6 +22,7 @@
 #include <iomanip>
 #include <sstream>
 #include <map>
+#include <numeric>
 #include <mutex>
 #include <set>
 #include <unistd.h>
@@ -610,6 +611,34 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
   progress.resumed = report.resumed;
   progress.finished = report.resumed;
   for (const SweepCaseResult& r : report.results) progress.failed += r.resumed && r.status == SweepStatus::failed;
+  // Each case's cost, for the ETA: its pass's estimated wall time (the steps its step bounds imply
+  // times one evaluation of q̈, timed here: a few ms a case); a brush counts its filaments. The ETA
+  // is then the cost left over the cost done per second so far, not the count of cases left.
+  std::vector<double> cost(todo.size(), NAN);
+  for (std::size_t n = 0; n < todo.size(); ++n) {
+    const Config& c = configs[todo[n]];
+    try {
+      if (c.brush) {
+        Config one = c;
+        one.brush.reset();
+        cost[n] = estimate_steps(build_case(one)).wall_s * std::max(1, c.brush->filaments * c.brush->rows);
+      } else {
+        cost[n] = estimate_steps(build_case(c)).wall_s;
+      }
+    } catch (const std::exception&) {
+    }
+  }
+  {
+    double known = 0;
+    int count = 0;
+    for (double v : cost)
+      if (std::isfinite(v) && v > 0) known += v, ++count;
+    const double typical = count ? known / count : 1.0;
+    for (double& v : cost)
+      if (!(std::isfinite(v) && v > 0)) v = typical;
+  }
+  const double total_cost = std::accumulate(cost.begin(), cost.end(), 0.0);
+  double done_cost = 0;
   JobRunnerOptions runner;
   runner.threads = options.jobs;
   runner.stop = options.stop;
@@ -619,7 +648,8 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
     const SweepStatus status = report.results[i].status;
     if (status == SweepStatus::failed || status == SweepStatus::error) ++progress.failed;
     progress.elapsed_s = p.elapsed_s;
-    progress.eta_s = p.eta_s;
+    done_cost += cost[p.job];
+    progress.eta_s = done_cost > 0 && p.elapsed_s > 0 ? (total_cost - done_cost) / (done_cost / p.elapsed_s) : p.eta_s;
     progress.last = &report.cases[i];
     progress.last_result = &report.results[i];
     if (options.on_case_finished) options.on_case_finished(progress);
