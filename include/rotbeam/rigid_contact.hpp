@@ -43,6 +43,14 @@ double stick_speed_threshold(const BeamModel& beam);
 /// tip moves only along its local y) holding the gap holds the slip: `dependent`, λ = c/a and F_t = 0.
 /// Requires `tip` filled at (t, q, q̇) and ws.mass_llt/ws.psi evaluated at (q, q̇); uses ws.scratch,
 /// ws.scratch2.
+/// The contact's inverse masses at the tip: a_nn = ∇CᵀM⁻¹∇C, a_nt = ∇CᵀM⁻¹g, a_tt = gᵀM⁻¹g with
+/// g = ∂V_t/∂q̇ [1/kg], leaving M⁻¹∇C in ws.scratch and M⁻¹g in ws.scratch2. Requires `tip` filled
+/// and ws.mass_llt evaluated at q.
+struct ContactMobility {
+  double nn = 0, nt = 0, tt = 0;
+};
+ContactMobility contact_mobility(const TipKinematics& tip, BeamWorkspace& ws);
+
 struct LockedTipForces {
   double lambda = 0, tangential = 0;
   bool dependent = false;

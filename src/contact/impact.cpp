@@ -1,4 +1,5 @@
 #include "rotbeam/impact.hpp"
+#include "rotbeam/rigid_contact.hpp"
 
 #include "rotbeam/detail/quadratic_form.hpp"
 #include "rotbeam/surface.hpp"
@@ -196,13 +197,10 @@ ImpactResult apply_tangential_impact(const BeamModel& beam, const Surface& surfa
   r.vy_before = tip.slip_speed;
   const double v_before_x = tip.VX, v_before_y = tip.VY;
   beam.evaluate_mass(q, ws);
-  Eigen::VectorXd& minv_grad = ws.scratch;
-  Eigen::VectorXd& minv_t = ws.scratch2;
-  minv_grad = tip.grad_gap;
-  ws.mass_llt.solveInPlace(minv_grad);
-  minv_t = tip.grad_tangent;
-  ws.mass_llt.solveInPlace(minv_t);
-  const double a = tip.grad_gap.dot(minv_grad), ant = tip.grad_gap.dot(minv_t), att = tip.grad_tangent.dot(minv_t);
+  const ContactMobility m = contact_mobility(tip, ws);
+  const Eigen::VectorXd& minv_grad = ws.scratch;
+  const Eigen::VectorXd& minv_t = ws.scratch2;
+  const double a = m.nn, ant = m.nt, att = m.tt;
   r.effective_inverse_mass = a;
   const CoulombImpulse c = mu > 0.0 && a * att - ant * ant > 1e-12 * a * att
                                ? coulomb_impulse(a, ant, att, mu, 0.0, std::max(r.vx_before, 0.0), tip.slip_speed)

@@ -40,16 +40,23 @@ SlipDecision decide_slip(const BeamModel& beam, const FrictionModel& friction, c
   return decide_slip_at_rest(friction, tip, ws);
 }
 
-LockedTipForces locked_tip_forces(const TipKinematics& tip, BeamWorkspace& ws) {
-  // Two constraints: C̈ = ∇Cᵀq̈ + γ = 0 and V̇_t = gᵀq̈ + γ_t = 0 with M q̈ = −Ψ + λ∇C + λ_t g,
-  // g = ∂V_t/∂q̇.
+ContactMobility contact_mobility(const TipKinematics& tip, BeamWorkspace& ws) {
   Eigen::VectorXd& minv_grad = ws.scratch;
   Eigen::VectorXd& minv_g = ws.scratch2;
   minv_grad = tip.grad_gap;
   ws.mass_llt.solveInPlace(minv_grad);
   minv_g = tip.grad_tangent;
   ws.mass_llt.solveInPlace(minv_g);
-  const double ann = tip.grad_gap.dot(minv_grad), ant = tip.grad_gap.dot(minv_g), att = tip.grad_tangent.dot(minv_g);
+  return {tip.grad_gap.dot(minv_grad), tip.grad_gap.dot(minv_g), tip.grad_tangent.dot(minv_g)};
+}
+
+LockedTipForces locked_tip_forces(const TipKinematics& tip, BeamWorkspace& ws) {
+  // Two constraints: C̈ = ∇Cᵀq̈ + γ = 0 and V̇_t = gᵀq̈ + γ_t = 0 with M q̈ = −Ψ + λ∇C + λ_t g,
+  // g = ∂V_t/∂q̇.
+  const ContactMobility m = contact_mobility(tip, ws);
+  const Eigen::VectorXd& minv_grad = ws.scratch;
+  const Eigen::VectorXd& minv_g = ws.scratch2;
+  const double ann = m.nn, ant = m.nt, att = m.tt;
   // ∇CᵀM⁻¹Ψ and gᵀM⁻¹Ψ via the symmetric solves already made.
   const double cn = minv_grad.dot(ws.psi) - tip.gamma, ct = minv_g.dot(ws.psi) - tip.gamma_tangent;
   const double det = ann * att - ant * ant;

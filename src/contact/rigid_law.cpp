@@ -134,16 +134,9 @@ public:
       control.event(EventKind::slip_reversal, detail::slip_reversal_message(d.direction));
     s.episode.slip = d.direction;
     if (!control.holds_stick()) return;
-    const AccelerationMultiplier am = acceleration_multiplier(sys.beam, sys.surface, friction(), s.t, s.q, s.qd,
-                                                              d.direction, control.workspace(), tip);
-    if (am.solution.status == MultiplierSolution::Status::non_unique) return control.end_contact(two_solutions_rule(am));
-    if (am.solution.status != MultiplierSolution::Status::unique)
-      return control.fail(FailureKind::painleve,
-                          detail::painleve_unresolved_message(
-                              am.a, am.b, am.c,
-                              "the slip stopped with more than μF_n needed to hold the tip, and sliding on drives it "
-                              "into the surface; with V_t = 0 no impulse can stop a slip"),
-                          Phase::contact);
+    slides_from_rest(control, d.direction,
+                     "the slip stopped with more than μF_n needed to hold the tip, and sliding on drives it into the "
+                     "surface");
   }
 
   // The thesis's Appendix B checks the slip direction from V_t before every contact step.
@@ -194,22 +187,33 @@ private:
     FilamentState& s = control.state();
     if (d.kind == SlipDecision::Kind::separate) return control.end_contact("the stuck tip lifts off (λ > 0)");
     const double direction = d.kind == SlipDecision::Kind::slip ? d.direction : (d.stick_tangential > 0 ? -1.0 : 1.0);
-    const System& sys = control.system();
-    const AccelerationMultiplier am = acceleration_multiplier(sys.beam, sys.surface, friction(), s.t, s.q, s.qd,
-                                                              direction, control.workspace(), control.tip());
-    if (am.solution.status == MultiplierSolution::Status::non_unique)
-      return control.end_contact(two_solutions_rule(am));
-    if (am.solution.status != MultiplierSolution::Status::unique)
-      return control.fail(FailureKind::painleve,
-                          detail::painleve_unresolved_message(
-                              am.a, am.b, am.c,
-                              "the stuck tip needs more than μF_n to stay, and sliding against that force drives it "
-                              "into the surface; with V_t = 0 no impulse can stop a slip"),
-                          Phase::contact);
+    if (!slides_from_rest(control, direction,
+                          "the stuck tip needs more than μF_n to stay, and sliding against that force drives it into "
+                          "the surface"))
+      return;
     s.phase = Phase::contact;
     s.episode.parameter[kStuck] = 0.0;
     s.episode.slip = direction;
     control.event(EventKind::stick_end, detail::stick_end_message(d.stick_tangential, direction));
+  }
+
+  // Whether the tip at rest tangentially (V_t = 0) can slide in `direction`: a Painlevé point there
+  // ends the contact (two admissible multipliers: the separation) or stops the pass (none: `why`,
+  // and no impulse can stop a slip that is not there); false in both cases.
+  bool slides_from_rest(PhaseControl& control, double direction, const std::string& why) const {
+    const System& sys = control.system();
+    FilamentState& s = control.state();
+    const AccelerationMultiplier am = acceleration_multiplier(sys.beam, sys.surface, friction(), s.t, s.q, s.qd,
+                                                              direction, control.workspace(), control.tip());
+    if (am.solution.status == MultiplierSolution::Status::unique) return true;
+    if (am.solution.status == MultiplierSolution::Status::non_unique)
+      control.end_contact(two_solutions_rule(am));
+    else
+      control.fail(FailureKind::painleve,
+                   detail::painleve_unresolved_message(am.a, am.b, am.c,
+                                                       why + "; with V_t = 0 no impulse can stop a slip"),
+                   Phase::contact);
+    return false;
   }
 
   // Painlevé's paradox with two admissible multipliers (a − b < 0, c > 0: a contact force and a
