@@ -150,8 +150,8 @@ py::tuple run(const std::optional<std::string>& path, const Values& overrides) {
   check_history_fits(c, available_memory_bytes(), true);  // the whole history is kept in memory
   const PassResult result = interruptible([&](const StopToken& stop) { return run_case(c, {nullptr, &stop}); });
   const nlohmann::json summary = summary_json(result, config, *c.surface);
-  return py::make_tuple(from_json(summary), history_arrays(result, config.beam.modes), event_dicts(result),
-                        py::bytes(revolutions_csv(result, config.beam.modes)), py::bytes(force_bins_csv(result)));
+  return py::make_tuple(from_json(summary), history_arrays(result, coordinate_count(config.beam)), event_dicts(result),
+                        py::bytes(revolutions_csv(result, coordinate_count(config.beam))), py::bytes(force_bins_csv(result)));
 }
 
 py::tuple brush(const std::optional<std::string>& path, const Values& overrides, int threads) {

@@ -576,6 +576,7 @@ TEST(Cli, KeysListsEveryKeyWithTheStructsDefault) {
   const rotbeam::HertzContact hertz;
   const rotbeam::BeamParameters beam;
   expected["beam"]["theory"] = "foreshortening";
+  expected["beam"]["axial"] = "inextensible";
   expected["beam"]["poisson"] = hertz.wire_poisson;
   expected["model"] = {{"centrifugal", beam.centrifugal}, {"coriolis", beam.coriolis}};
   expected["surface"].update({{"shape", "plane"}, {"radius_m", surface.radius_m}, {"speed_rpm", surface.speed_rpm},

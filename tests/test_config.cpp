@@ -175,10 +175,11 @@ TEST(Config, ResolvedJsonRoundTripsThroughToml) {
   // rows, row_phase_deg, phase_jitter_deg, length_scatter, diameter_scatter, seed}, surface.{shape,
   // radius_m, speed_rpm, clearance_m, lobes, lobe_amplitude_m, lobe_law}, beam.theory,
   // model.{centrifugal, coriolis}, contact.{model, tip_radius_m, friction_regularization_m_s,
-  // stiffness_factor}, surface.{youngs_modulus_pa, poisson}, beam.poisson
-  EXPECT_EQ(config_keys().size(), 70u);
-  // The theory and the switches appear where they differ from the thesis's, and read back.
+  // stiffness_factor}, surface.{youngs_modulus_pa, poisson}, beam.poisson, beam.axial
+  EXPECT_EQ(config_keys().size(), 71u);
+  // The theory, the axial model and the switches appear where they differ from the thesis's, and read back.
   EXPECT_FALSE(j["beam"].contains("theory"));
+  EXPECT_FALSE(j["beam"].contains("axial"));
   EXPECT_FALSE(j.contains("model"));
   const Config e = load_config_string("[beam]\ntheory = \"elastica\"\nmodes = 60\n[model]\ncoriolis = false\n", {});
   const nlohmann::json je = e.to_json();

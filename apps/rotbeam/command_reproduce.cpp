@@ -280,7 +280,7 @@ int run_reproduce(const ReproduceOptions& o) {
         jobs.size(),
         [&](std::size_t i) {
           const rotbeam::Case c = build_case(jobs[i].config);
-          PassFiles files(jobs[i].folder, jobs[i].config.beam.modes, jobs[i].config.simulation.history_revolutions);
+          PassFiles files(jobs[i].folder, coordinate_count(jobs[i].config.beam), jobs[i].config.simulation.history_revolutions);
           ThinnedRows thinned(files, jobs[i].whole_path);
           PassSink* sink = o.keep_history ? static_cast<PassSink*>(&files) : &thinned;
           const PassResult r = run_case(c, {sink, &interrupt_token(), {}});

@@ -131,7 +131,7 @@ int run_pass_command(const RunOptions& o) {
   }
   std::unique_ptr<PassFiles> files_owner;
   try {
-    files_owner = std::make_unique<PassFiles>(o.output_dir, config.beam.modes, config.simulation.history_revolutions);
+    files_owner = std::make_unique<PassFiles>(o.output_dir, coordinate_count(config.beam), config.simulation.history_revolutions);
   } catch (const std::exception& e) {
     throw ConfigError(std::string("-o ") + e.what());
   }

@@ -238,6 +238,7 @@ std::string modes_text(const Config& config) {
   const BeamParameters& b = config.beam;
   std::string s = std::to_string(b.modes) + (b.modes == 1 ? " mode" : " modes");
   if (b.theory != BeamTheory::foreshortening) s += std::string(", ") + beam_theory_name(b.theory);
+  if (b.axial == BeamAxial::extensible) s += ", extensible";
   if (!b.centrifugal && !b.coriolis) s += ", without the rotation terms";
   else if (!b.centrifugal) s += ", without the centrifugal terms";
   else if (!b.coriolis) s += ", without the Coriolis terms";

@@ -130,6 +130,11 @@ public:
   virtual double tip_excursion_bound(const Eigen::Ref<const Eigen::VectorXd>& q,
                                      const Eigen::Ref<const Eigen::VectorXd>& qd, BeamWorkspace& ws) const = 0;
 
+  /// The coordinates of the straight filament turning steadily with the hub (the state of a rigid
+  /// turn, docs/model.md §9) into q (size n): zero for an inextensible filament, the centrifugal stretch
+  /// for an extensible one (extensible_beam.hpp).
+  virtual void rest_state(Eigen::Ref<Eigen::VectorXd> q) const { q.setZero(); }
+
   /// θ(t) [rad] and its inverse [s].
   double theta(double t) const { return hub_motion().theta(t); }
   double time_at(double theta_rad) const { return hub_motion().time_at(theta_rad); }

@@ -15,6 +15,13 @@ enum class BeamTheory { foreshortening, elastica };
 /// "foreshortening" / "elastica".
 const char* beam_theory_name(BeamTheory theory);
 
+/// beam.axial: the thesis's inextensible filament, or one with the wire's axial compliance EA (one
+/// more coordinate, the tip's stretch: docs/model.md §12).
+enum class BeamAxial { inextensible, extensible };
+
+/// "inextensible" / "extensible".
+const char* beam_axial_name(BeamAxial axial);
+
 /// Inputs of the filament on its hub, SI units (defaults: thesis Table 5-1, 550 rpm, 5 modes).
 struct BeamParameters {
   double length_m = 0.0635;          // L
@@ -28,6 +35,7 @@ struct BeamParameters {
   // one value for every mode, or n values (mode order: ascending frequency).
   std::vector<double> damping_ratio;
   BeamTheory theory = BeamTheory::foreshortening;  // beam.theory
+  BeamAxial axial = BeamAxial::inextensible;       // beam.axial
   // The rotation terms of the filament's kinetic energy T = T2 + T1 + T0 (docs/model.md "Switches
   // for the rotation terms"): model.centrifugal keeps T0 = ½ω²∫(x² + y²)dm (centrifugal stiffening
   // and spin softening), model.coriolis keeps T1 = ω∫(xẏ − yẋ)dm (the gyroscopic coupling). The
@@ -35,6 +43,10 @@ struct BeamParameters {
   bool centrifugal = true;
   bool coriolis = true;
 };
+
+/// The generalised coordinates of the filament p describes: its modes, and the stretch when
+/// extensible (the columns q1…, qd1… of the outputs).
+int coordinate_count(const BeamParameters& p);
 
 /// ρA [kg/m] and EI [N m²] of the circular section.
 double mass_per_length(const BeamParameters& p);

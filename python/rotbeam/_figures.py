@@ -231,6 +231,8 @@ def modes_words(c):
     words = f"{c['beam']['modes']} mode{'' if c['beam']['modes'] == 1 else 's'}"
     if c["beam"].get("theory", "foreshortening") != "foreshortening":
         words += f", {c['beam']['theory']}"
+    if c["beam"].get("axial", "inextensible") == "extensible":
+        words += ", extensible"
     model = c.get("model", {})
     off = [name for name in ("centrifugal", "Coriolis") if model.get(name.lower(), True) is False]
     if off:

@@ -12,6 +12,13 @@ import numpy as np
 from ._csv import FORCE_BIN_COLUMNS, Columns, DamagedFolder, columns_of, read_csv
 
 
+def coordinate_count(config):
+    """The generalised coordinates of a run's filament (the columns q1…, qd1…): its modes, and the
+    stretch, last, when beam.axial = "extensible" (docs/model.md §12)."""
+    beam = config["beam"]
+    return beam["modes"] + (1 if beam.get("axial", "inextensible") == "extensible" else 0)
+
+
 def history_columns(n):
     """The columns of a history.csv of n modes, in their order."""
     return list(columns_of("history.csv", n))
@@ -95,9 +102,11 @@ def read_run(folder):
     force_bins.csv read strictly). Raises DamagedFolder naming the file and what is wrong."""
     folder = Path(folder)
     summary = check_run_files(folder)
-    n = summary["config"]["beam"]["modes"]
+    n = coordinate_count(summary["config"])
+    stretch = " and the stretch" if n > summary["config"]["beam"]["modes"] else ""
     history = read_csv(folder / "history.csv", modes=n,
-                       why_required=f" (summary.json: config.beam.modes = {n}; the files are not of one run)")
+                       why_required=f" (summary.json: config.beam.modes = {summary['config']['beam']['modes']}{stretch}; "
+                                    "the files are not of one run)")
     events = read_csv(folder / "events.csv")
     if (folder / "force_bins.csv").exists():
         read_csv(folder / "force_bins.csv")

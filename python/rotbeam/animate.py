@@ -42,7 +42,7 @@ except ImportError as missing:  # one line naming what to install, not a traceba
 
 from ._csv import DamagedFolder, read_csv  # noqa: E402
 from ._interrupt import error, file_error, wrote  # noqa: E402
-from ._runs import read_run  # noqa: E402
+from ._runs import coordinate_count, read_run  # noqa: E402
 from ._surface import draw_surface, outline, reach_m, surface_of, surface_x  # noqa: E402
 
 #: Slow motion: a degree of hub angle within `EVENT_HALF_WIDTH_DEG` of an impact, contact start or
@@ -78,7 +78,7 @@ def with_rigid_approach(history, summary, step_deg=0.05):
     approaching the surface. Histories that record the turn are returned as they are."""
     c = summary["config"]
     theta = history["theta_deg"]
-    n = c["beam"]["modes"]
+    n = coordinate_count(c)
     if c.get("initial", {}).get("start") != "rigid" or len(theta) < 2 or theta[1] - theta[0] <= 2 * step_deg:
         return history
     if any(history[f"q{i + 1}_m"][k] != 0.0 for i in range(n) for k in (0, 1)):
@@ -155,7 +155,7 @@ def filament_frames(folder, rows=None, points=41, magnify=1.0, history=None, sum
     folder = Path(folder)
     if summary is None:
         summary = json.loads((folder / "summary.json").read_text())
-    n = summary["config"]["beam"]["modes"]
+    n = coordinate_count(summary["config"])
     if history is None:
         history = read_csv(folder / "history.csv", modes=n)
     rows = np.arange(len(history["t_s"])) if rows is None else np.asarray(rows)

@@ -15,7 +15,7 @@ from ._figures import DEG, case_title, draw_all, save_figures, validity_note, wa
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from ._runs import (force_bins, impact_energy, impact_impulses, impact_rows, read_run, relative_angle,  # noqa: E402
+from ._runs import (coordinate_count, force_bins, impact_energy, impact_impulses, impact_rows, read_run, relative_angle,  # noqa: E402
                     sustained, sustained_force)
 from ._surface import casing_radius, draw_surface, surface_of, surface_x  # noqa: E402
 
@@ -227,11 +227,13 @@ def tip_path_figure(h, events, summary, title):
 
 def modal_figure(h, events, summary, title):
     """modal_coordinates.png: q and q̇ against θ."""
-    n = summary["config"]["beam"]["modes"]
+    n = coordinate_count(summary["config"])
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(9, 6), sharex=True)
+    modes = summary["config"]["beam"]["modes"]
     for i in range(1, n + 1):
-        a1.plot(h["theta_deg"], h[f"q{i}_m"] * 1e3, lw=0.8, label=f"q{i}")
-        a2.plot(h["theta_deg"], h[f"qd{i}_m_s"], lw=0.8, label=f"q̇{i}")
+        stretch = " (stretch)" if i > modes else ""  # an extensible filament's last coordinate
+        a1.plot(h["theta_deg"], h[f"q{i}_m"] * 1e3, lw=0.8, label=f"q{i}{stretch}")
+        a2.plot(h["theta_deg"], h[f"qd{i}_m_s"], lw=0.8, label=f"q̇{i}{stretch}")
     a1.set_ylabel("q (mm)")
     a2.set_ylabel("q̇ (m/s)")
     a2.set_xlabel(f"hub angle θ ({DEG})")

@@ -236,13 +236,17 @@ void check_start(Config& c, const GivenValues& given) {
   PassOptions& sim = c.simulation;
   if (sim.revolutions > 0) sim.end_angle_deg = beam.theta(0.0) * 180.0 / M_PI + 360.0 * sim.revolutions;
   const int n = c.beam.modes;
+  // The filament's rest state (its stretch when extensible), with the bending modes of initial.* below.
+  Eigen::VectorXd rest = Eigen::VectorXd::Zero(beam.modes());
+  beam.rest_state(rest);
   // The key that places the surface: the depth (plane, cylinder) or the casing's clearance.
   const bool casing = c.surface.shape == SurfaceShape::casing;
   const std::string place_key = casing ? "surface.clearance_m" : "surface.depth_fraction";
   const double place_value = casing ? c.surface.clearance_m : c.surface.depth_fraction;
   if (c.initial.start == "flexible") {
     // A flexible start must begin clear of the surface ...
-    const Eigen::VectorXd q0 = Eigen::Map<const Eigen::VectorXd>(c.initial.modal_displacement.data(), n);
+    Eigen::VectorXd q0 = rest;
+    q0.head(n) = Eigen::Map<const Eigen::VectorXd>(c.initial.modal_displacement.data(), n);
     // ... and inside the geometry the model can represent (docs/model.md, validity).
     const double reach = tip_reach(beam, q0);
     const bool displaced = was_given(given, "initial.modal_displacement");
@@ -262,7 +266,7 @@ void check_start(Config& c, const GivenValues& given) {
     return;
   }
   // A rigid start must begin clear of the surface and reach it before the end angle.
-  const double c0 = gap(beam, *surface, 0.0, Eigen::VectorXd::Zero(n));
+  const double c0 = gap(beam, *surface, 0.0, rest);
   if (c0 >= 0.0)
     refuse_value(given, place_key, place_value,
                  "the undeformed tip starts inside the surface (gap " + computed_number(c0) +

@@ -111,6 +111,11 @@ std::vector<Key> make_table() {
                     "the thesis's quadratic foreshortening, or the geometrically exact planar elastica",
                     [](auto& c) -> auto& { return c.beam.theory; },
                     [](const Config& c) { return c.beam.theory != BeamTheory::foreshortening; }));
+  t.push_back(named<BeamAxial>("beam.axial", {{"inextensible", BeamAxial::inextensible}, {"extensible", BeamAxial::extensible}},
+                    "the thesis's inextensible filament, or one with the wire's axial stiffness EA (one more "
+                    "coordinate, the tip's stretch; bounded forces where the filament's axis meets the surface)",
+                    [](auto& c) -> auto& { return c.beam.axial; },
+                    [](const Config& c) { return c.beam.axial != BeamAxial::inextensible; }));
   // One ratio for every mode, or one per mode; up to 10 (far past critical damping, 1).
   t.push_back(Key{"beam.damping_ratio", "",
                   Check{{closed(0, 10), numbers(0, 10)}, "must be a number or an array of beam.modes numbers in [0, 10]", "", ""},

@@ -535,7 +535,7 @@ bool complete_run_folder(const std::filesystem::path& dir, nlohmann::json* summa
 
 void write_pass_outputs(const std::filesystem::path& dir, const PassResult& result, const Config& config,
                         const Surface& surface) {
-  PassFiles files(dir, config.beam.modes);
+  PassFiles files(dir, coordinate_count(config.beam));
   for (const HistoryRow& r : result.history) files.row(r);
   for (const PassEvent& e : result.events) files.event(e);
   for (const RevolutionRecord& r : result.revolutions) files.revolution(r);  // the window was applied in memory

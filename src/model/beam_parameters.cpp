@@ -12,6 +12,12 @@ const char* beam_theory_name(BeamTheory theory) {
   return theory == BeamTheory::elastica ? "elastica" : "foreshortening";
 }
 
+const char* beam_axial_name(BeamAxial axial) {
+  return axial == BeamAxial::extensible ? "extensible" : "inextensible";
+}
+
+int coordinate_count(const BeamParameters& p) { return p.modes + (p.axial == BeamAxial::extensible ? 1 : 0); }
+
 double mass_per_length(const BeamParameters& p) { return p.density_kg_m3 * M_PI * p.diameter_m * p.diameter_m / 4.0; }
 
 double bending_stiffness(const BeamParameters& p) { return p.youngs_modulus_pa * M_PI * std::pow(p.diameter_m, 4) / 64.0; }

@@ -22,6 +22,8 @@ FirstImpactResult first_impact(const System& system, const InitialConditions& in
   if (!initial.rigid_start) {
     s.q = initial.q0;
     s.qd = initial.qd0;
+  } else {
+    beam.rest_state(s.q);
   }
   if (gap(beam, system.surface, 0.0, s.q) >= 0.0)
     throw std::invalid_argument("the initial shape already touches the surface (C(0) >= 0)");

@@ -103,7 +103,7 @@ void HistorySampler::after_impact(const ImpactView& v) { sample(v.t, v.q, v.qd_a
 void HistorySampler::rigid_turn(double t_from, double t_to) {
   const System& sys = ctx_.system;
   const PassOptions& o = ctx_.options;
-  iq_.setZero();
+  sys.beam.rest_state(iq_);
   iqd_.setZero();
   // Nothing moves but the hub: a row every output.interval_s or every 0.1° of hub angle,
   // whichever is longer, draws the approach; near the surface, the near-surface interval.

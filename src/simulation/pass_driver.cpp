@@ -56,7 +56,7 @@ void PassDriver::run(const InitialConditions& ic) {
   state_.phase = Phase::free;
   state_.episode = {};
   if (ic.rigid_start) {
-    state_.q.setZero();
+    system_.beam.rest_state(state_.q);
     state_.qd.setZero();
   } else {
     if (ic.q0.size() != n || ic.qd0.size() != n)

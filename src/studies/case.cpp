@@ -28,10 +28,13 @@ Case build_case(const Config& config) {
   }
   c.law = make_contact_law(config.contact, config.beam.youngs_modulus_pa, config.beam.diameter_m);
   c.options = config.simulation;
+  // The bending modes from initial.*; the coordinates beyond them (an extensible filament's stretch)
+  // at the filament's rest state.
   const int n = config.beam.modes;
   c.initial.rigid_start = config.initial.start == "rigid";
-  c.initial.q0 = Eigen::VectorXd::Zero(n);
-  c.initial.qd0 = Eigen::VectorXd::Zero(n);
+  c.initial.q0 = Eigen::VectorXd::Zero(c.beam->modes());
+  c.beam->rest_state(c.initial.q0);
+  c.initial.qd0 = Eigen::VectorXd::Zero(c.beam->modes());
   for (int i = 0; i < n && i < static_cast<int>(config.initial.modal_displacement.size()); ++i)
     c.initial.q0[i] = config.initial.modal_displacement[i];
   for (int i = 0; i < n && i < static_cast<int>(config.initial.modal_velocity.size()); ++i)

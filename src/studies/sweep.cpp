@@ -672,7 +672,7 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
             set_outcome(res, brush.summary.failure, " (filament " + std::to_string(brush.summary.failed_filament + 1) + ")");
           } else {
             const Case c = build_case(configs[i]);
-            PassFiles files(options.dir / report.cases[i].folder, configs[i].beam.modes,
+            PassFiles files(options.dir / report.cases[i].folder, coordinate_count(configs[i].beam),
                             configs[i].simulation.history_revolutions);
             const PassResult pass = run_case(c, {&files, options.stop, {}});
             files.commit(pass, configs[i], *c.surface);
