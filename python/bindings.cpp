@@ -137,7 +137,10 @@ py::list event_dicts(const PassResult& r) {
     d["vx_after_m_s"] = e.vx_after;
     d["restitution"] = e.restitution;
     d["impulse_n_s"] = e.impulse;
+    d["tangential_impulse_n_s"] = e.tangential_impulse;
     d["hub_work_j"] = e.hub_work;
+    d["impact_loss_j"] = e.impact_loss;
+    d["surface_work_j"] = e.surface_work;
     d["detail"] = e.detail;
     events.append(d);
   }

@@ -3,6 +3,7 @@
 
 #include "rotbeam/pass_output.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -286,10 +287,29 @@ TEST(SweepShard, ShardsMergeIntoTheSweepAndMergeRefusesWhatDoesNotFit) {
   const MergeReport merged = merge_sweeps(merge);
   EXPECT_EQ(merged.shards, 3);
   EXPECT_EQ(merged.linked_files + merged.copied_files, 6u * 4u);
+  // sweep.csv without its wall_time_s column (the one that differs between runs); the message column
+  // is quoted text that may hold commas.
   const auto without_wall_time = [](const std::string& csv) {
-    std::string out;
+    const auto fields = [](const std::string& line) {
+      std::vector<std::string> f(1);
+      bool quoted = false;
+      for (const char ch : line) {
+        if (ch == '"') quoted = !quoted;
+        if (ch == ',' && !quoted) f.emplace_back();
+        else f.back() += ch;
+      }
+      return f;
+    };
     std::istringstream in(csv);
-    for (std::string line; std::getline(in, line);) out += line.substr(0, line.rfind(',', line.rfind(',') - 1)) + "\n";
+    std::string line, out;
+    std::ptrdiff_t wall = -1;  // the column's index, from the header
+    while (std::getline(in, line)) {
+      std::vector<std::string> f = fields(line);
+      if (wall < 0) wall = std::find(f.begin(), f.end(), "wall_time_s") - f.begin();
+      if (wall < static_cast<std::ptrdiff_t>(f.size())) f.erase(f.begin() + wall);
+      for (const std::string& v : f) out += v + ",";
+      out += "\n";
+    }
     return out;
   };
   EXPECT_EQ(without_wall_time(slurp(merge.output / "sweep.csv")), without_wall_time(slurp(fs::path(root) / "whole" / "sweep.csv")));

@@ -3,6 +3,7 @@
 #include "common.hpp"
 
 #include "rotbeam/case.hpp"
+#include "rotbeam/detail/diagnostics.hpp"
 #include "rotbeam/pass_output.hpp"
 
 #include <cmath>
@@ -69,8 +70,11 @@ void print_summary(const Config& config, const PassResult& r, const std::string&
   std::cout << "  max |y_t|/L           " << fixed(s.max_tip_deflection_ratio, 4) << "\n";
   // "edge" is said by its warning below; "outside" here, in words that cannot be missed.
   if (s.validity == Validity::outside)
-    std::cout << "  validity              OUTSIDE THE MODEL: the tip went farther from its clamp than the filament's "
-                 "length; these results are not physical\n";
+    std::cout << "  validity              OUTSIDE THE MODEL: "
+              << (s.left_geometry ? "the tip went farther from its clamp than the filament's length"
+                                  : "max |y_t|/L above " + detail::short_number(kOutsideDeflectionRatio) +
+                                        ", where the foreshortening's tip is 0.01 L or more from the exact one")
+              << "; these results are not physical (beam.theory = \"elastica\" is exact)\n";
   std::cout << "  energy audit residual " << s.energy_audit_residual << "\n";
   std::cout << "  steps                 " << s.steps << " (" << s.rhs_evaluations << " RHS evaluations), "
             << fixed(s.wall_time_s, 3) << " s\n";

@@ -129,7 +129,7 @@ int run_theories(const TheoriesOptions& o) {
     std::printf("validity         foreshortening %s (max |y_t|/L = %.3g > %g: %s; docs/model.md §10); the "
                 "elastica's geometry is exact at any deflection\n",
                 validity_name(fore.validity), fore.max_tip_deflection_ratio, config.simulation.deflection_warning_ratio,
-                fore.validity == Validity::outside ? "outside the model's geometry, not physical"
+                fore.validity == Validity::outside ? "outside the model, not physical"
                                                    : "the quadratic foreshortening at the edge of its validity");
   };
   if (!comparable) {

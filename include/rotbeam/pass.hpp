@@ -41,6 +41,8 @@ struct PassEvent {
   double vx_before = NAN, vx_after = NAN, restitution = NAN, impulse = NAN;
   double tangential_impulse = NAN;  // impacts: P_t along the surface's tangent [N s] (0 without friction)
   double hub_work = NAN;  // impacts: the work the hub does during the impact [J]
+  double impact_loss = NAN;   // impacts: the impulses' work on the tip less a moving surface's part (≤ 0) [J]
+  double surface_work = NAN;  // impacts: a moving surface's work through the impact's friction [J]
   std::string detail;
 };
 
@@ -110,6 +112,12 @@ struct SteadyState {
 /// not a failure: the pass runs on (exit 0) unless simulation.deflection_limit_is_error.
 enum class Validity { within, edge, outside };
 
+/// Above this |y_t|/L the quadratic foreshortening's tip is 1e-2 L or more from the exact (elastica's)
+/// tip for the same q (measured on the first mode's shape: 2.4e-4 L at 0.1, 1.9e-3 L at 0.2, 1.0e-2 L at
+/// 0.35, 1.5e-2 L at 0.4; about 0.24 (|y_t|/L)³ L): a pass that bends further is `outside` the model
+/// (docs/model.md "Validity of a pass").
+inline constexpr double kOutsideDeflectionRatio = 0.35;
+
 /// "within", "edge", "outside": the summary's `validity`.
 inline const char* validity_name(Validity v) {
   return v == Validity::within ? "within" : v == Validity::edge ? "edge" : "outside";
@@ -132,6 +140,7 @@ struct PassSummary {
   double hub_impulsive_work_j = 0;  // the part of the hub's work done during the impacts (the constraint moves) [J]
   double max_tip_deflection_ratio = 0;
   Validity validity = Validity::within;
+  bool left_geometry = false;  // outside because the tip went farther than 1.01 L from its clamp
   double energy_audit_residual = 0;
   // simulation.end_when_clear: the angle at which the pass ended because the tip could no longer
   // reach the surface before end_angle_deg; NaN when it ran to its end angle.

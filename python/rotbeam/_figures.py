@@ -264,7 +264,7 @@ def validity_note(summary):
     ratio = summary.get("max_tip_deflection_ratio")
     limit = summary.get("config", {}).get("simulation", {}).get("deflection_warning_ratio", 0.1)
     how = f"max |y_t|/L = {ratio:.3g} > {limit:g}" if isinstance(ratio, (int, float)) else "see the warnings"
-    what = ("outside the model's geometry: not physical" if validity == "outside"
+    what = ("outside the model: not physical" if validity == "outside"
             else "the quadratic foreshortening at the edge of its validity")
     return f"\nvalidity {validity}: {how}, {what} (docs/model.md §10)"
 

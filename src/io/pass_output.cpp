@@ -77,7 +77,8 @@ void append_event_line(std::string& out, const PassEvent& e) {
   put(out, e.theta * 180.0 / M_PI);
   out += ',';
   out += event_name(e.kind);
-  for (double v : {e.y_tip, e.vx_before, e.vx_after, e.restitution, e.impulse, e.tangential_impulse, e.hub_work}) {
+  for (double v : {e.y_tip, e.vx_before, e.vx_after, e.restitution, e.impulse, e.tangential_impulse, e.hub_work,
+                   e.impact_loss, e.surface_work}) {
     out += ',';
     if (!std::isnan(v)) put(out, v);  // empty: not defined for this kind of event
   }

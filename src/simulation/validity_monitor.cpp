@@ -61,7 +61,21 @@ void ValidityMonitor::track_ratio(double t, const Eigen::VectorXd& q, double rat
     deflection_warned_ = true;
     std::ostringstream m;
     m << "tip deflection exceeds " << o.deflection_warning_ratio
-      << " of the length: the quadratic foreshortening model is at the edge of its validity (docs/model.md §10)";
+      << " of the length: the quadratic foreshortening model is at the edge of its validity, its tip about "
+         "0.24 (|y_t|/L)^3 L from the exact one; beam.theory = \"elastica\" is exact at any deflection "
+         "(rotbeam theories compares the two) (docs/model.md §10)";
+    journal_.warn(t, q, m.str());
+  }
+  // Past kOutsideDeflectionRatio the foreshortening's tip is 1e-2 L or more from the exact one.
+  if (limited && !outside_warned_ && ratio > kOutsideDeflectionRatio) {
+    outside_warned_ = true;
+    s.validity = Validity::outside;
+    std::ostringstream m;
+    m.precision(3);
+    m << "max |y_t|/L = " << ratio << " passes " << kOutsideDeflectionRatio
+      << ", where the quadratic foreshortening's tip is 0.01 L or more from the exact one: the results are not "
+         "the physical filament's; run beam.theory = \"elastica\" (exact at any deflection; rotbeam theories "
+         "compares the two) (docs/model.md §10)";
     journal_.warn(t, q, m.str());
   }
   // An inextensible filament's tip cannot be farther than L from its clamp at (r_h, 0); where the
@@ -70,6 +84,7 @@ void ValidityMonitor::track_ratio(double t, const Eigen::VectorXd& q, double rat
     const double reach = tip_reach(beam, q);
     if (reach > kReachLimit) {
       s.validity = Validity::outside;
+      s.left_geometry = true;
       geometry_warned_ = true;
       std::ostringstream m;
       m.precision(3);

@@ -32,7 +32,7 @@ private:
   PassContext& ctx_;
   PassJournal& journal_;
   double rev_max_ratio_ = 0;
-  bool deflection_warned_ = false, geometry_warned_ = false, penetration_warned_ = false, breached_ = false;
+  bool deflection_warned_ = false, outside_warned_ = false, geometry_warned_ = false, penetration_warned_ = false, breached_ = false;
   double breach_ratio_ = 0;
 };
 

@@ -396,7 +396,7 @@ BrushResult run_brush(const Config& config, const BrushOptions& options) {
     w << beyond << " of " << s.steady + s.not_steady << " filaments bend past simulation.deflection_warning_ratio = "
       << config.simulation.deflection_warning_ratio << " of their length (max |y_t|/L = " << s.max_tip_deflection_ratio
       << ")"
-      << (s.validity == Validity::outside ? ", some beyond the model's geometry (their results are not physical)"
+      << (s.validity == Validity::outside ? ", some outside the model (their results are not physical)"
                                           : ", at the edge of the quadratic foreshortening")
       << " (docs/model.md §10): run the brush with beam.theory = \"elastica\" to see the difference";
     s.warnings.push_back(w.str());
