@@ -128,11 +128,12 @@ def impact_impulses(events):
 
 
 def impact_energy(h, events, summary):
-    """What the impacts drawn did to the Jacobi integral: {impacts, dh_j (Σ of h's jumps at them, from
-    the history rows before and after each), loss_j (Σ P(V⁻ + V⁺)/2, the impulses' work on the tip;
-    NaN for Coulomb impacts, whose tangential impulse events.csv does not hold), hub_j (Σ of the
-    hub's work during them)}, or None without impacts. h = E − ωH_z, so at an impact
-    Δh = loss − ω(R × P)_z = loss + ωY_tP for a normal impulse P along X."""
+    """What the impacts drawn did to the energy: {impacts, dh_j (Σ of the Jacobi integral's jumps at
+    them, from the history rows before and after each), loss_j (Σ of events.csv's impact_loss_j: the
+    impulses' work on the tip less a moving surface's part, ≤ 0), surface_j (Σ surface_work_j: a moving
+    surface's work through the impacts' friction), hub_j (Σ of the hub's work during them)}, or None
+    without impacts. E = T + U changes by loss + surface + hub at the impacts; h = E − ωH_z by
+    loss + surface − ω(R × P)_z (the surface, fixed in the inertial frame, moves in the hub's)."""
     imp = impact_rows(events)
     if not imp:
         return None
@@ -144,11 +145,17 @@ def impact_energy(h, events, summary):
             dh = math.nan
             break
         dh += h["jacobi_j"][rows[-1]] - h["jacobi_j"][rows[0]]
-    p = events["impulse_n_s"][imp]
-    loss = float(np.sum(p * (events["vx_before_m_s"][imp] + events["vx_after_m_s"][imp]) / 2))
-    if summary["config"].get("impact", {}).get("friction", "none") != "none":
-        loss = math.nan
-    return {"impacts": len(imp), "dh_j": dh, "loss_j": loss, "hub_j": float(np.nansum(events["hub_work_j"][imp]))}
+    if "impact_loss_j" in events:
+        loss = float(np.sum(events["impact_loss_j"][imp]))
+        surface = float(np.sum(events["surface_work_j"][imp]))
+    else:  # a folder written before events.csv had them: the normal impulses' work only
+        p = events["impulse_n_s"][imp]
+        loss = float(np.sum(p * (events["vx_before_m_s"][imp] + events["vx_after_m_s"][imp]) / 2))
+        surface = 0.0
+        if summary["config"].get("impact", {}).get("friction", "none") != "none":
+            loss = math.nan
+    return {"impacts": len(imp), "dh_j": dh, "loss_j": loss, "surface_j": surface,
+            "hub_j": float(np.nansum(events["hub_work_j"][imp]))}
 
 
 def relative_angle(theta_deg):
@@ -162,10 +169,32 @@ def sustained(h):
     return np.isin(h["phase"], ["contact", "stick"])
 
 
-def sustained_force(h):
-    """(tip Y (mm), F_n (N)) on the rows in sustained contact, NaN elsewhere (so episodes do not join)."""
+def along_angle(summary):
+    """True where a position along the surface is the hub angle, not the tip's Y: a casing, closed
+    around the hub, meets the tip at the same Y on both sides of its lobes (surfaces.md)."""
+    return summary["config"].get("surface", {}).get("shape", "plane") == "casing"
+
+
+def along_label(by_angle):
+    """The axis label of a position along the surface (along_angle)."""
+    return "hub angle from the deepest point (°)" if by_angle else "tip position Y (mm)"
+
+
+def along_surface(theta_deg, y_tip_m, by_angle):
+    """Positions along the surface: the hub angle in (−180°, 180°] from the deepest point, or Y (mm)."""
+    return relative_angle(theta_deg) if by_angle else np.asarray(y_tip_m, dtype=float) * 1e3
+
+
+def sustained_force(h, by_angle=False):
+    """(position along the surface (along_surface), F_n (N)) on the rows in sustained contact, NaN
+    elsewhere (so episodes do not join)."""
     contact = sustained(h)
-    return np.where(contact, h["y_tip_m"] * 1e3, np.nan), np.where(contact, h["normal_force_n"], np.nan)
+    x = np.where(contact, along_surface(h["theta_deg"], h["y_tip_m"], by_angle), np.nan)
+    f = np.where(contact, h["normal_force_n"], np.nan)
+    if by_angle:  # an episode across ±180° is not joined across the axis: a gap where the angle wraps
+        wraps = np.flatnonzero(np.abs(np.diff(x)) > 180.0) + 1
+        x, f = np.insert(x, wraps, np.nan), np.insert(f, wraps, np.nan)
+    return x, f
 
 
 def force_bins(folder, h, events, summary, bin_deg=0.5):

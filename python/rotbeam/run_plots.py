@@ -15,22 +15,24 @@ from ._figures import DEG, case_title, draw_all, save_figures, validity_note, wa
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from ._runs import (coordinate_count, force_bins, impact_energy, impact_impulses, impact_rows, read_run, relative_angle,  # noqa: E402
+from ._runs import (along_angle, along_label, along_surface, coordinate_count, force_bins, impact_energy, impact_impulses, impact_rows, read_run, relative_angle,  # noqa: E402
                     sustained, sustained_force)
 from ._surface import casing_radius, draw_surface, surface_of, surface_x  # noqa: E402
 
 
-def plot_normal_force(h, events, summary, ax, label=None, **style):
-    """Sustained-contact F_n against the tip's Y (mm); draws nothing (and no legend entry) for a pass
+def plot_normal_force(h, events, summary, ax, label=None, by_angle=None, **style):
+    """Sustained-contact F_n against the position along the surface (the tip's Y (mm), or the hub
+    angle on a casing: along_angle; by_angle overrides); draws nothing (and no legend entry) for a pass
     without sustained contact. Returns whether it drew."""
     contact = sustained(h)
     if not contact.any():
         return False
-    y, f = sustained_force(h)
+    y, f = sustained_force(h, along_angle(summary) if by_angle is None else by_angle)
     line, = ax.plot(y, f, label=label, **style)
     # A row in contact between two that are not (a pass stopped at its first contact step) is no line:
     # a dot, so that nothing drawn is invisible.
-    alone = contact & ~np.r_[False, contact[:-1]] & ~np.r_[contact[1:], False]
+    drawn = np.isfinite(y)
+    alone = drawn & ~np.r_[False, drawn[:-1]] & ~np.r_[drawn[1:], False]
     if alone.any():
         ax.plot(y[alone], f[alone], "o", ms=3, color=line.get_color())
     return True
@@ -47,7 +49,9 @@ def force_figure(folder, h, events, summary, title):
     angle that puts both on one scale."""
     fig, (ax, axb) = plt.subplots(2, 1, figsize=(9, 7), gridspec_kw={"height_ratios": [3, 1.7]})
     s = summary
-    _, y_i, p_i = impact_impulses(events)
+    by_angle = along_angle(summary)
+    th_i, y_i, p_i = impact_impulses(events)
+    x_i = along_surface(th_i, y_i, by_angle)
     has_contact = sustained(h).any()
     headroom = 1.35 if has_contact else 1.7  # room for the legend (and the note) above the data
     axp = None
@@ -58,7 +62,7 @@ def force_figure(folder, h, events, summary, title):
     if len(p_i):
         axp = ax.twinx() if has_contact else ax
         where = ", right axis" if has_contact else ""
-        _stems(axp, y_i * 1e3, p_i * 1e3, "C3",
+        _stems(axp, x_i, p_i * 1e3, "C3",
                f"impact impulses |P| ({len(p_i)}, Σ {1e3 * np.nansum(p_i):.3g} mN·s{where})")
         axp.set_ylabel("impact impulse |P| (mN·s)", color="C3" if has_contact else "k")
         axp.set_ylim(0, headroom * np.nanmax(p_i) * 1e3)
@@ -74,7 +78,7 @@ def force_figure(folder, h, events, summary, title):
                 ha="center", va="center", fontsize=9)
         ax.set_xticks([])
         ax.set_yticks([])
-    ax.set_xlabel("tip position Y (mm)")
+    ax.set_xlabel(along_label(by_angle))
     ax.grid(alpha=0.3)
     lines, labels = ax.get_legend_handles_labels()
     if axp is not None and axp is not ax:
@@ -255,9 +259,13 @@ def energy_note(ledger):
            "\nand its impulse P works on the tip: Δh = impact loss (≤ 0) + ωY_tP (> 0 where Y_t < 0, before the "
            "deepest point).")
     if math.isfinite(ledger["loss_j"]) and math.isfinite(ledger["dh_j"]):
-        why += (f"\nHere: loss {uj(ledger['loss_j'])} + moving surface {uj(ledger['dh_j'] - ledger['loss_j'])} "
-                f"= Δh {uj(ledger['dh_j'])} over the {ledger['impacts']} impacts; E = T + U: "
-                f"{uj(ledger['loss_j'] + ledger['hub_j'])} (loss + the hub's impulsive work).")
+        surface = ledger.get("surface_j", 0.0)
+        frame = ledger["dh_j"] - ledger["loss_j"] - surface
+        spinning = f" + spinning surface's work {uj(surface)}" if surface != 0.0 else ""
+        why += (f"\nHere: loss {uj(ledger['loss_j'])}{spinning} + moving surface {uj(frame)} "
+                f"= Δh {uj(ledger['dh_j'])} over the {ledger['impacts']} impacts;\nE = T + U: "
+                f"{uj(ledger['loss_j'] + surface + ledger['hub_j'])} (loss{' + surface' if surface != 0.0 else ''} "
+                f"+ the hub's impulsive work {uj(ledger['hub_j'])}).")
     elif math.isfinite(ledger["dh_j"]):
         why += f"\nHere the {ledger['impacts']} impacts change h by {uj(ledger['dh_j'])}."
     return why

@@ -17,7 +17,7 @@ import numpy as np  # noqa: E402
 
 from . import _core  # noqa: E402
 from ._csv import FILES, DamagedFolder, read_csv  # noqa: E402
-from ._runs import check_run_files, read_run  # noqa: E402
+from ._runs import along_angle, along_label, check_run_files, read_run  # noqa: E402
 from .brush_plots import BRUSH_MAP_PANELS, brush_figures, read_brush  # noqa: E402
 from .rub_map import is_rub_sweep, rub_map_figure  # noqa: E402
 from .run_plots import plot_normal_force, run_figures  # noqa: E402
@@ -153,15 +153,22 @@ def sweep_force_figure(folder, table, keys, ok, folders, runs=None):
     where = {f: i for i, f in enumerate(table["folder"])}
     values = [tuple(table[k][where[f]] for k in keys) for f in folders]
     impacts_only = []
+    read = {f: runs[f] if runs and f in runs else read_run(folder / f) for f in folders}
+    # On casings the position along the surface is the hub angle (their two sides share a Y); a sweep
+    # that mixes shapes keeps Y for all, its casings' lobes folded (said in the title).
+    by_angle = [along_angle(read[f][2]) for f in folders]
+    angle = bool(by_angle) and all(by_angle)
     for f, v, style in zip(folders, values, series_styles(values)):
-        h, _, summary = runs[f] if runs and f in runs else read_run(folder / f)
+        h, _, summary = read[f]
         label = ", ".join(value_text(u) for u in v)
-        if not plot_normal_force(h, None, summary, ax, label=label, lw=1.1, **dict(style, marker=None)):
+        if not plot_normal_force(h, None, summary, ax, label=label, by_angle=angle, lw=1.1, **dict(style, marker=None)):
             impacts_only.append(label)
-    ax.set_xlabel("tip position Y (mm)")
+    ax.set_xlabel(along_label(angle))
     ax.set_ylabel("normal force F_n (N)")
     ax.grid(alpha=0.3)
     title = "Sustained-contact normal force along the surface, every case"
+    if any(by_angle) and not angle:
+        title += " (the casings' cases against Y: both sides of a lobe share a Y)"
     if impacts_only:
         shown = "; ".join(impacts_only[:6]) + ("; …" if len(impacts_only) > 6 else "")
         title += (f"\n{_of(len(impacts_only), len(folders), 'cases with results')} no sustained contact "
