@@ -54,7 +54,7 @@ with ThreadPoolExecutor() as pool:  # the C++ core releases the GIL
 rows = [r for r in results if r["failure"] is None]
 failed = [r for r in results if r["failure"] is not None]
 
-fig, (ax_t, ax_p) = plt.subplots(1, 2, figsize=(11, 4.2))
+fig, (ax_t, ax_p) = plt.subplots(1, 2, figsize=(11, 5.0))
 for ax, key, scale, label in ((ax_t, "torque_n_m", 1e3, "mean hub torque (mN m)"),
                               (ax_p, "power_w", 1e3, "mean hub power (mW)")):
     x = np.array([r["speed_rpm"] for r in rows])
@@ -74,7 +74,7 @@ for ax, key, scale, label in ((ax_t, "torque_n_m", 1e3, "mean hub torque (mN m)"
     ax.set_xlabel("hub speed (rpm)")
     ax.set_ylabel(label)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14))  # below the axes: over no point
 if failed:
     fig.text(0.01, 0.01, "no value (the run stopped on a numerical failure): " +
              ", ".join(f"{r['speed_rpm']:.0f} rpm ({r['failure']}, {r['where']})" for r in failed), fontsize=7)

@@ -12,6 +12,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
+import numpy as np
 
 import rotbeam
 
@@ -25,20 +26,25 @@ with ThreadPoolExecutor() as pool:  # the C++ core releases the GIL
     results = list(pool.map(lambda c: rotbeam.run(overrides={"hub.speed_rpm": c[0], "surface.friction": c[1],
                                                              "output.interval_s": 2e-6}), cases))
 
-fig, axes = plt.subplots(1, len(frictions), figsize=(13, 4.2), sharey=True)
+fig, axes = plt.subplots(1, len(frictions), figsize=(13, 5.4), sharey=True)
 for ax, mu in zip(axes, frictions):
+    impacts_only = []
     for (speed, m), r in zip(cases, results):
         if m != mu:
             continue
         h = r.history
-        contact = h["phase"] == "contact"
+        contact = np.isin(h["phase"], ["contact", "stick"])  # sustained contact, sliding or stuck
+        if not contact.any():  # no force to draw: said in the title, not a legend entry without data
+            impacts_only.append(f"{speed} rpm ({r.summary['impacts']} impacts)")
+            continue
         ax.plot(h["y_tip_m"][contact] * 1e3, h["normal_force_n"][contact], ".", ms=2,
                 label=f"{speed} rpm: {r.summary['impacts']} impacts, {r.summary['contact_episodes']} "
                       f"episode{'' if r.summary['contact_episodes'] == 1 else 's'}")
-    ax.set_title(f"μ = {mu}, depth 2 %")
+    only = f"\nimpacts only, no sustained contact: {', '.join(impacts_only)}" if impacts_only else ""
+    ax.set_title(f"μ = {mu}, depth 2 %{only}", fontsize=10)
     ax.set_xlabel("tip position Y (mm)")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), markerscale=4)  # below: over no point
 axes[0].set_ylabel("normal force F_n (N)")
 fig.suptitle("Sustained-contact normal force along the surface (adaptive scheme, 5 modes)")
 fig.tight_layout()
