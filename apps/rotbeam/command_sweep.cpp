@@ -10,7 +10,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <memory>
+#include <mutex>
+#include <string>
 #include <unistd.h>
 
 namespace rotbeam::cli {
@@ -80,10 +83,44 @@ int run_sweep_command(const SweepCommandOptions& o) {
   if (netcdf) options.before_index = netcdf_writer(o.output_dir, "sweep.csv is written without it", netcdf_code);
   const bool terminal = !o.quiet && isatty(STDERR_FILENO), quiet = o.quiet;
   auto line = std::make_unique<LiveLine>(terminal);
-  line->set([](double e) { return "cases under way, " + duration_text(e) + " elapsed"; });
-  options.on_case_finished = [terminal, quiet, &line](const SweepProgress& p) {
+  // The case under way that reported last, in words ("case_0004 θ 2514° of 7110°, revolution 7/20"):
+  // the live line shows it, so a long case is seen to move. Read by the line's ticker thread.
+  struct Running {
+    std::mutex mutex;
+    std::string text;
+  };
+  const auto running = std::make_shared<Running>();
+  const auto running_text = [running]() {
+    std::lock_guard<std::mutex> lock(running->mutex);
+    return running->text.empty() ? std::string() : "; " + running->text;
+  };
+  line->set([running_text](double e) { return "cases under way, " + duration_text(e) + " elapsed" + running_text(); });
+  // Without a terminal, a line per running case at most every 30 s of its own.
+  std::map<std::string, double> printed_at;
+  options.on_case_progress = [terminal, quiet, running, &printed_at](const SweepCase& c, const PassProgress& p) {
+    if (quiet) return;
+    std::string text = c.folder + " at θ = " + std::to_string(static_cast<long>(std::lround(p.theta_deg))) + "° of " +
+                       std::to_string(static_cast<long>(std::lround(p.end_deg))) + "°";
+    if (p.revolutions > 0) text += ", revolution " + std::to_string(p.revolution) + "/" + std::to_string(p.revolutions);
+    if (terminal) {
+      std::lock_guard<std::mutex> lock(running->mutex);
+      running->text = text;
+      return;
+    }
+    double& at = printed_at[c.folder];
+    if (p.elapsed_s < at + 30.0) return;
+    at = p.elapsed_s;
+    std::fprintf(stderr, "%s running: %s, %s\n", c.folder.c_str(), text.c_str() + c.folder.size() + 1,
+                 duration_text(p.elapsed_s).c_str());
+    std::fflush(stderr);
+  };
+  options.on_case_finished = [terminal, quiet, &line, running, running_text](const SweepProgress& p) {
     if (quiet) return;
     if (terminal) {
+      {
+        std::lock_guard<std::mutex> lock(running->mutex);
+        if (running->text.rfind(p.last->folder + " ", 0) == 0) running->text.clear();  // it has finished
+      }
       // Redrawn every second: the clock moves and the ETA counts down between finished cases.
       const int width = 30, filled = p.total ? width * p.finished / p.total : width;
       const std::string bar = std::string(filled, '#') + std::string(width - filled, '.');
@@ -92,7 +129,7 @@ int run_sweep_command(const SweepCommandOptions& o) {
       line->set([=](double e) {
         return "[" + bar + "] " + std::to_string(finished) + "/" + std::to_string(total) + " cases" +
                (failed ? ", " + std::to_string(failed) + " failed" : "") + ", " + duration_text(e) + " elapsed, ETA " +
-               duration_text(std::max(0.0, eta - (e - at)));
+               duration_text(std::max(0.0, eta - (e - at))) + running_text();
       });
     } else {
       std::string values;

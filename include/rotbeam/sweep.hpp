@@ -6,6 +6,7 @@
 
 #include "rotbeam/config.hpp"
 #include "rotbeam/job_runner.hpp"
+#include "rotbeam/pass.hpp"
 
 #include <cstddef>
 #include <filesystem>
@@ -133,6 +134,9 @@ struct SweepOptions {
   Shard shard;   // run only the cases of this shard (every case is validated all the same)
   const StopToken* stop = nullptr;  // a requested stop ends every running case and starts no other
   std::function<void(const SweepProgress&)> on_case_finished;  // called under a lock
+  // Progress inside a running case (a pass's, about every quarter second; not a brush's), under the
+  // same lock: a long case shows how far it is.
+  std::function<void(const SweepCase&, const PassProgress&)> on_case_progress;
   // Called when no case is left interrupted, under the folder's lock; what it throws is reported
   // in SweepReport::index_error, and sweep.csv is written all the same.
   BeforeIndex before_index;

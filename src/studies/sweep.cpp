@@ -674,7 +674,13 @@ SweepReport run_sweep(const std::vector<SweepAxis>& axes, const SweepOptions& op
             const Case c = build_case(configs[i]);
             PassFiles files(options.dir / report.cases[i].folder, coordinate_count(configs[i].beam),
                             configs[i].simulation.history_revolutions);
-            const PassResult pass = run_case(c, {&files, options.stop, {}});
+            PassControl control{&files, options.stop, {}};
+            if (options.on_case_progress)
+              control.on_progress = [&, i](const PassProgress& p) {
+                std::lock_guard<std::mutex> lock(mutex);
+                options.on_case_progress(report.cases[i], p);
+              };
+            const PassResult pass = run_case(c, control);
             files.commit(pass, configs[i], *c.surface);
             res.summary = summary_json(pass, configs[i], *c.surface);
             set_outcome(res, pass.failure, "");
