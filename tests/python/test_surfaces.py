@@ -104,3 +104,31 @@ def test_the_last_revolution_and_the_frequencies_are_in_the_summary(folders):
     r = s["last_revolution"]
     assert r["surface_work_j"] == 0.0
     assert abs(r["ledger_residual_j"]) < 1e-8 * abs(r["hub_work_j"])
+
+
+def test_a_casings_force_is_drawn_along_the_hub_angle_with_both_lobes_apart(folders):
+    # A casing meets the tip at the same Y on both sides of a lobe: its force is drawn against the hub
+    # angle from the deepest point, in (−180°, 180°], and an episode across ±180° is not joined across
+    # the axis. The sweep's picture does the same for a sweep of casings.
+    from rotbeam._runs import read_run, sustained_force
+
+    h, events, summary = read_run(folders["casing"])
+    fig = plots.force_figure(folders["casing"], h, events, summary, "casing")
+    ax = fig.axes[0]
+    assert "hub angle" in ax.get_xlabel()
+    x, f = sustained_force(h, True)
+    drawn = x[np.isfinite(x)]
+    assert drawn.size and drawn.min() > -180.0 - 1e-9 and drawn.max() <= 180.0 + 1e-9
+    steps = np.abs(np.diff(x))
+    assert not (steps[np.isfinite(steps)] > 180.0).any()  # no line drawn across the axis
+    # Both lobes: contact near 0° and near ±180° (a 2-lobe casing's deepest points).
+    assert (np.abs(drawn) < 45).any() and (np.abs(drawn) > 135).any()
+    plt.close(fig)
+    from rotbeam import sweep_plots
+
+    table, keys, ok = sweep_plots.read_sweep(folders["sweep"])
+    drawn_folders = [f for f, good in zip(table["folder"], ok) if good]
+    assert drawn_folders
+    fig = sweep_plots.sweep_force_figure(folders["sweep"], table, keys, ok, drawn_folders)
+    assert "hub angle" in fig.axes[0].get_xlabel()
+    plt.close(fig)
