@@ -1,13 +1,14 @@
 // The rigid contact law (docs/model.md §4, §5; thesis §4.4–4.5): a unilateral constraint C = 0 whose multiplier
 // λ ≤ 0 is the normal force, Coulomb friction F_t = −μ_eff|λ| s_t, and momentum-balance impacts with
 // a coefficient of restitution. Two contact phases (docs/contact.md, "Stick"):
-//   contact (sliding, s_t = ±1), a constraint: roots λ = 0 (separation) and V_t = 0 (the slip stops:
-//           stick, lift-off or reversal, decided by the locked-tip analysis);
+//   contact (sliding, s_t = ±1), a constraint: roots λ = 0 (separation), V_t = 0 (the slip stops:
+//           stick, lift-off or reversal, decided by the locked-tip analysis) and a − b = 0 (a dynamic
+//           jam: the tangential impact);
 //   stick   (V_t = 0 held), two constraints whose multipliers are λ and the tangential force F_t:
 //           roots λ = 0 (separation) and |F_t| = μ_eff|λ| (the tip slides against F_t).
 // A stepper that does not hold a stick (StepperTraits::holds_stick: the thesis scheme) stops there
-// with a diagnostic, and a λ + b|λ| = c with no or two admissible solutions (Painlevé's paradox)
-// stops the pass. Episode: parameter[0] = λ0, the acceleration-level multiplier at the contact's start
+// with a diagnostic; a λ + b|λ| = c with no or two admissible solutions (Painlevé's paradox) is
+// resolved by the rules of docs/contact.md or stops the pass with a message that says why. Episode: parameter[0] = λ0, the acceleration-level multiplier at the contact's start
 // (the thesis scheme's first prediction); parameter[kStuck] = 1 while the tip sticks.
 #include "laws.hpp"
 
@@ -24,10 +25,12 @@ namespace {
 
 using detail::short_number;
 
-constexpr std::array<ContactRoot, 2> kSlidingRoots = {{
+constexpr std::array<ContactRoot, 3> kSlidingRoots = {{
     {"λ = 0", true, "λ reached 0"},
     {"V_t = 0", false, ""},
+    {"a − b = 0", false, ""},
 }};
+constexpr int kJamRoot = 2;  // the sliding phase's root a − b = 0
 constexpr std::array<ContactRoot, 2> kStickRoots = {{
     {"λ = 0", true, "λ reached 0 while the tip stuck"},
     {"|F_t| = μ F_n", false, ""},
@@ -86,7 +89,8 @@ public:
     return {lambda, reported_normal_force(friction(), tip, std::min(lambda, 0.0))};
   }
 
-  // Sliding: 0, λ crosses 0 upward; 1, s_t V_t crosses 0 downward, −s_t V_t upward.
+  // Sliding: 0, λ crosses 0 upward; 1, s_t V_t crosses 0 downward, −s_t V_t upward; 2, (a − b)/a
+  // crosses 0 downward, −(a − b)/a upward (a > 0: a dynamic jam).
   // Stick: 0, λ crosses 0 upward; 1, |F_t| − μ_eff|λ| crosses 0 upward.
   double root_value(Phase phase, int k, const System& system, const ContactEpisode& episode, double t,
                     const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qd,
@@ -99,6 +103,11 @@ public:
     if (k == 0)
       return acceleration_multiplier(system.beam, system.surface, friction(), t, q, qd, episode.slip, ws, tip)
           .solution.lambda;
+    if (k == kJamRoot) {
+      const AccelerationMultiplier am =
+          acceleration_multiplier(system.beam, system.surface, friction(), t, q, qd, episode.slip, ws, tip);
+      return -(am.a - am.b) / am.a;
+    }
     tip_kinematics(system.beam, system.surface, t, q, qd, tip);
     return -(episode.slip * tip.slip_speed);
   }
@@ -119,10 +128,13 @@ public:
   }
 
   // Sliding, V_t = 0: the velocity has no sign to give; the locked-tip analysis decides (docs/contact.md).
+  // Sliding, a − b = 0: a dynamic jam; the tangential impact stops the slip (docs/contact.md).
   // Stick, |F_t| = μ_eff|λ|: the tip slides against F_t.
-  void root(PhaseControl& control, int) const override {
+  void root(PhaseControl& control, int k) const override {
     const System& sys = control.system();
     FilamentState& s = control.state();
+    if (s.phase == Phase::contact && k == kJamRoot)
+      return tangential_impact(control, "a − b reached 0 while the tip slid (a dynamic jam)");
     TipKinematics& tip = control.tip();
     sys.beam.evaluate_dynamics(s.q, s.qd, control.workspace());
     tip_kinematics(sys.beam, sys.surface, s.t, s.q, s.qd, tip);

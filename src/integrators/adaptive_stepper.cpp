@@ -213,7 +213,7 @@ private:
       return;
     }
     const ContactEvaluation e = law_.evaluate(sys_, episode_, t, q, qd, *ws_, tip_, force_);
-    if (!e.admissible && !inadmissible_) {
+    if (!e.admissible && (!inadmissible_ || t < inadmissible_t_)) {
       inadmissible_ = true;
       inadmissible_t_ = t;
       inadmissible_at_ = e;
@@ -473,11 +473,6 @@ private:
     for (int k = 1; k < count; ++k) g0[k] = law_.root_value(s.phase, k, sys_, episode_, t_, pq_, pqd_, *ews_, etip_);
     double ta = 0, tb = 0;
     if (!advance(t_stop, ta, tb, out)) return out;
-    if (inadmissible_) {
-      out = failed(law_.failure_kind(inadmissible_at_), law_.failure_message(inadmissible_at_));
-      out.failure->t = inadmissible_t_;
-      return out;
-    }
     const double te = std::min(tb, t_stop);
     Samples ts{}, fn{};
     ts[0] = ta;
@@ -500,6 +495,15 @@ private:
       if (!(g0[k] < 0.0)) continue;
       const double tk = first_root([&](double t) { return state_root(k, t); }, ta, te, g0[k]);
       if (!std::isnan(tk) && tk < t_event) t_event = tk, root = k;
+    }
+    // An accepted step whose stages met no admissible force (Painlevé's paradox, a − b < 0; rejected
+    // trial steps beyond its end do not count) stands only up to a root of the phase found on its
+    // dense output (the law's a − b = 0, where it has one): the law resolves the point there. Without
+    // such a root the pass stops with the law's message.
+    if (inadmissible_ && inadmissible_t_ <= tb && root < 0) {
+      out = failed(law_.failure_kind(inadmissible_at_), law_.failure_message(inadmissible_at_));
+      out.failure->t = inadmissible_t_;
+      return out;
     }
     const double peak = sampled_peak(ts, fn, sampled, t_event);
     const bool at_dense = constraint ? (t_event < tb || root >= 0) : t_event < tb;
