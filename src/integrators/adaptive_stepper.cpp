@@ -535,8 +535,8 @@ private:
   }
 
   // The largest of the sampled normal forces fn at ts[0..sampled] before t_end, refined by Brent's
-  // maximisation on the dense output between the best sample's neighbours when it is an interior one
-  // (a maximum inside a step is not lost to the step's ends).
+  // maximisation on the dense output between the best sample's neighbours (the step's start and the
+  // next sample where the start is the best): a maximum inside a step is not lost to its samples.
   double sampled_peak(const Samples& ts, const Samples& fn, int sampled, double t_end) {
     int best = 0, last = 0;
     for (int k = 0; k <= sampled && ts[k] < t_end; ++k) {
@@ -544,8 +544,10 @@ private:
       if (fn[k] > fn[best]) best = k;
     }
     const double peak = fn[best];
-    if (best == 0 || sampled == 0) return peak;
-    const double lo = ts[best - 1], hi = best < last ? ts[best + 1] : t_end;
+    if (sampled == 0) return peak;
+    // The step's start may be the best sample with the maximum just after it (a force still rising
+    // where an episode begins): refined between the start and the next sample too.
+    const double lo = best > 0 ? ts[best - 1] : ts[0], hi = best < last ? ts[best + 1] : t_end;
     auto minus = [&](double t) { return -state_sample(t).normal_force; };
     boost::uintmax_t iters = 100;
     const auto found = boost::math::tools::brent_find_minima(minus, lo, hi, kBrentBits, iters);
