@@ -20,6 +20,8 @@ ForeshorteningWorkspace::ForeshorteningWorkspace(int size)
 
 namespace {
 
+using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
 // The contractions below are written once as templates on the mode count: N > 0 fixes n at compile
 // time (the loops unroll; used for n ≤ 8, the common case), N = 0 takes n from the model.
 // Packed pair index of {j, l}, j ≤ l, in row-major upper-triangle order.
@@ -82,18 +84,26 @@ void force_kernel(const ForeshorteningBeam& model, const double* qv, const doubl
   const double* qp = ws.q_pairs.data();
   const double* vp = ws.v_pairs.data();
 
-  // ∫ ISP q (qᵀ ISP q) and ∫ ISP q (q̇ᵀ ISP q̇) from Z.
+  // ∫ ISP q (qᵀ ISP q) and ∫ ISP q (q̇ᵀ ISP q̇) from Z. With n from the model (n > 8) as Eigen's
+  // matrix–vector products: a plain dot-product loop is one chain of dependent additions (the
+  // compiler may not reorder them), which at n = 20 bounds it by the adder's latency.
   const double* z = ws.z.data();
   const double c1 = model.mass_per_length / model.length;
-  for (int i = 0; i < n; ++i) {
-    const double* zi = z + static_cast<std::size_t>(i) * np;
-    double cubic = 0.0, fore = 0.0;
-    for (int p = 0; p < np; ++p) {
-      cubic += zi[p] * qp[p];
-      fore += zi[p] * vp[p];
+  if constexpr (N == 0) {
+    const Eigen::Map<const RowMatrix> zm(z, n, np);
+    ws.isp_cubic.noalias() = zm * ws.q_pairs;
+    ws.foreshortening.noalias() = c1 * (zm * ws.v_pairs);  // D(q,q̇) q̇ = (ρA/L) ∫ ISP q (q̇ᵀ ISP q̇)
+  } else {
+    for (int i = 0; i < n; ++i) {
+      const double* zi = z + static_cast<std::size_t>(i) * np;
+      double cubic = 0.0, fore = 0.0;
+      for (int p = 0; p < np; ++p) {
+        cubic += zi[p] * qp[p];
+        fore += zi[p] * vp[p];
+      }
+      ws.isp_cubic[i] = cubic;
+      ws.foreshortening[i] = c1 * fore;  // D(q,q̇) q̇ = (ρA/L) ∫ ISP q (q̇ᵀ ISP q̇)
     }
-    ws.isp_cubic[i] = cubic;
-    ws.foreshortening[i] = c1 * fore;  // D(q,q̇) q̇ = (ρA/L) ∫ ISP q (q̇ᵀ ISP q̇)
   }
 
   // 2ω G(q) q̇ with G_ij = ρA Σ_k q_k (∫ISP_ik S_j − ∫ISP_jk S_i).
@@ -125,11 +135,15 @@ void force_kernel(const ForeshorteningBeam& model, const double* qv, const doubl
 
   // K_b q = (EI/L³) [ r⁴ ⊙ q + ∫ P q (qᵀ P q)/(2L²) ].
   const double* pp = mi.p_p.data();
-  for (int p = 0; p < np; ++p) {
-    const double* row = pp + static_cast<std::size_t>(p) * np;
-    double sum = 0.0;
-    for (int r = 0; r < np; ++r) sum += row[r] * qp[r];
-    ws.p_contract[p] = sum;
+  if constexpr (N == 0) {
+    ws.p_contract.noalias() = Eigen::Map<const RowMatrix>(pp, np, np) * ws.q_pairs;
+  } else {
+    for (int p = 0; p < np; ++p) {
+      const double* row = pp + static_cast<std::size_t>(p) * np;
+      double sum = 0.0;
+      for (int r = 0; r < np; ++r) sum += row[r] * qp[r];
+      ws.p_contract[p] = sum;
+    }
   }
   const double cb = model.bending_stiffness / (L * L * L);
   for (int i = 0; i < n; ++i) {
