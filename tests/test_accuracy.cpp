@@ -104,7 +104,10 @@ TEST(Accuracy, ImpactsAfterShortReboundFlightsAreLocatedToAPicosecond) {
   int checked = 0;
   for (std::size_t i = 0; i + 1 < r.history.size(); ++i) {
     const HistoryRow &before = r.history[i], &after = r.history[i + 1];
-    if (before.t != after.t || before.vx <= 0.0 || after.vx > before.vx) continue;  // an impact pair
+    // An impact pair: the first two rows at one time (after a plastic impact a third row, the
+    // contact's start, follows the post-impact row, whose V_X is a round-off of zero).
+    if (i > 0 && r.history[i - 1].t == before.t) continue;
+    if (before.t != after.t || before.vx <= 0.0 || after.vx > before.vx) continue;
     ++checked;
     EXPECT_LE(std::abs(before.gap), 1e-12 * before.vx + 1e-16) << "impact at t = " << before.t;
   }
