@@ -8,8 +8,9 @@
 //           roots λ = 0 (separation) and |F_t| = μ_eff|λ| (the tip slides against F_t).
 // A stepper that does not hold a stick (StepperTraits::holds_stick: the thesis scheme) stops there
 // with a diagnostic; a λ + b|λ| = c with no or two admissible solutions (Painlevé's paradox) is
-// resolved by the rules of docs/contact.md or stops the pass with a message that says why. Episode: parameter[0] = λ0, the acceleration-level multiplier at the contact's start
-// (the thesis scheme's first prediction); parameter[kStuck] = 1 while the tip sticks.
+// resolved by the rules of docs/contact.md or stops the pass with a message that says why.
+// Episode: parameter[0] = λ0, the acceleration-level multiplier at the contact's start (the thesis
+// scheme's first prediction); parameter[kStuck] = 1 while the tip sticks.
 #include "laws.hpp"
 
 #include "rotbeam/impact.hpp"
