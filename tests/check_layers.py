@@ -18,7 +18,7 @@ HEADER_LAYERS = {
     "pass.hpp": "vocabulary", "state.hpp": "vocabulary", "ledger.hpp": "vocabulary",
     "force_record.hpp": "vocabulary", "brush_result.hpp": "vocabulary", "history_window.hpp": "vocabulary",
     "units.hpp": "vocabulary", "version.hpp": "vocabulary", "tip_kinematics.hpp": "model",
-    "brush_settings.hpp": "vocabulary",
+    "brush_settings.hpp": "vocabulary", "wear_record.hpp": "vocabulary",
     "detail/csv.hpp": "vocabulary", "detail/parse.hpp": "vocabulary", "detail/progress_clock.hpp": "vocabulary",
     "detail/quadratic_form.hpp": "vocabulary", "detail/diagnostics.hpp": "contact",
 }

@@ -118,6 +118,8 @@ public:
     return arc_gap;
   }
   double deepest_angle() const override { return 0.0; }
+  double material_coordinate(const Eigen::Vector2d& position, double) const override { return position.x(); }
+  SurfaceCoordinate coordinate() const override { return {"X", "m", 1.0, 0.0}; }
   nlohmann::json describe() const override { return {{"shape", "fake"}}; }
 };
 

@@ -93,7 +93,7 @@ void print_summary(const Config& config, const PassResult& r, const std::string&
   for (const std::string& w : s.warnings) std::cout << "  warning: " << w << "\n";
   std::cout << "  wrote " << path_text((std::filesystem::path(dir) / "history.csv").string()) << ", events.csv, "
             << (std::filesystem::exists(std::filesystem::path(dir) / "revolutions.csv") ? "revolutions.csv, " : "")
-            << "force_bins.csv, summary.json\n";
+            << "force_bins.csv, wear_profile.csv, summary.json\n";
 }
 
 // Passes estimated above this many steps are announced: a step costs a few microseconds at 5 modes

@@ -50,6 +50,9 @@ public:
   double max_gap_on_arc(double radius, double theta_from, double theta_to, double excursion) const override;
   /// Where the clearance is smallest: φ = 0 (every law).
   double deepest_angle() const override { return 0.0; }
+  /// The polar angle φ of P about the hub centre [deg], in (−180°, 180°] (the casing is at rest).
+  double material_coordinate(const Eigen::Vector2d& position, double t) const override;
+  SurfaceCoordinate coordinate() const override;
   nlohmann::json describe() const override;
 
 private:

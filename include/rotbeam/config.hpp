@@ -10,6 +10,7 @@
 #include "rotbeam/foreshortening_beam.hpp"
 #include "rotbeam/pass_options.hpp"
 #include "rotbeam/surface.hpp"
+#include "rotbeam/wear.hpp"
 
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -45,6 +46,7 @@ struct Config {
   ContactSettings contact;     // surface.friction, [impact], [contact], compat.thesis_forces, compat.restitution_speed
   InitialSettings initial;     // [initial]
   PassOptions simulation;      // [simulation], output.interval_s, compat.thesis_dcdt
+  WearSettings wear;           // [wear] (docs/wear.md); wear.profile_bins is simulation's
   std::optional<BrushSettings> brush;  // [brush]: present when the case is a brush (docs/brush.md)
 
   /// The resolved configuration as a JSON object with the TOML's sections and keys.

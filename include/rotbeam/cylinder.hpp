@@ -33,6 +33,11 @@ public:
   /// the excursion (the gap is a signed distance).
   double max_gap_on_arc(double radius, double theta_from, double theta_to, double excursion) const override;
   double deepest_angle() const override { return 0.0; }
+  /// The angle around the cylinder's axis [deg] of its material point under P, in (−180°, 180°], 0° at
+  /// the point nearest the hub at t = 0, counter-clockwise positive; a spinning cylinder's material
+  /// turns by Ω_s t.
+  double material_coordinate(const Eigen::Vector2d& position, double t) const override;
+  SurfaceCoordinate coordinate() const override;
   nlohmann::json describe() const override;
 
 private:

@@ -49,7 +49,13 @@ struct ImpactResult {
   bool tangential = false;             // an impact without collision at a Painlevé point (apply_tangential_impact)
   double contact_work = 0;             // work of the contact impulse on the tip [J]: surface_work − (the energy the impact dissipates)
   double surface_work = 0;             // its part P⃗·V_s that a moving surface does (0 at rest, and without friction) [J]
+  double frictional_heat = 0;          // −∫V_t dP_t over the impulse, the heat friction makes in it (≥ 0) [J]
+  double sliding_load = 0;             // ∫|V_t| dp over the normal impulse, the impact's Archard load–distance [N m]
 };
+
+/// ∫|v| dp over [0, p] of a slip v that changes linearly from v0 to v1 as the normal impulse grows
+/// from 0 to p ≥ 0 [N m]: p(|v0| + |v1|)/2, or p(v0² + v1²)/(2(|v0| + |v1|)) where v changes sign.
+double linear_sliding_load(double p, double v0, double v1);
 
 /// Whether the tip leaves the surface after the impact. The law makes Ċ⁺ = −e Ċ⁻ exactly, so it
 /// does iff e > 0 (above 1e-12); after a plastic impact the recomputed Ċ⁺ is zero only to round-off

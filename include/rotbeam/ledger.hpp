@@ -28,6 +28,8 @@ enum class LedgerTerm : int {
   tangential_impulse,   // ∫ F_t dt + Σ P_t, friction's momentum on the tip along the tangent [N s]
   contact_moment,       // ∫ (X F_Y − Y F_X) dt + Σ (X P_Y − Y P_X), the contact's angular impulse about the hub [N m s]
   contact_work,         // ∫ q̇ᵀQ dt, the contact force's power in the rotating frame (the Jacobi-integral audit) [J]
+  frictional_heat,      // ∫ |F_t||V_t| dt + Σ(−∫V_t dP_t), the heat friction makes at the contact (≥ 0) [J]
+  sliding_load,         // ∫ F_n |V_t| dt + Σ ∫|V_t| dp, Archard's load times sliding distance [N m]
   count                 // (the number of terms)
 };
 
@@ -37,6 +39,7 @@ inline constexpr std::size_t kLedgerTermCount = static_cast<std::size_t>(LedgerT
 enum class LedgerReport {
   energy,    // a term of the energy balance, in summary.json, revolutions.csv and the brush's ledger
   momentum,  // an exchange of momentum, reported beside the balance
+  beside,    // where energy goes or what wears, reported beside the balance (heat, Archard's load–distance)
   internal,  // kept for the hub's work and the audit, not written
 };
 
@@ -71,6 +74,10 @@ inline constexpr std::array<LedgerTermInfo, kLedgerTermCount> kLedgerTerms = {{
      "the contact's angular impulse about the hub axis [N m s]"},
     {LedgerTerm::contact_work, "contact_work_j", "J", "contact work", LedgerReport::internal, true,
      "the contact force's work in the rotating frame, ∫q̇ᵀQ dt [J]"},
+    {LedgerTerm::frictional_heat, "frictional_heat_j", "J", "frictional heat", LedgerReport::beside, true,
+     "the heat friction makes at the contact, ∫|F_t||V_t| dt plus the impacts' −∫V_t dP_t (≥ 0; where friction's dissipation goes) [J]"},
+    {LedgerTerm::sliding_load, "sliding_load_n_m", "N m", "load × slip", LedgerReport::beside, true,
+     "Archard's load–distance integral, ∫F_n|V_t| dt plus the impacts' ∫|V_t| dp; a worn volume is k/H times it [N m]"},
 }};
 
 // Every term has its row, in the enumerators' order.

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "rotbeam/force_record.hpp"
+#include "rotbeam/wear_record.hpp"
 #include "rotbeam/ledger.hpp"
 #include "rotbeam/outcome.hpp"
 #include "rotbeam/pass_options.hpp"
@@ -191,6 +192,12 @@ struct PassResult {
   PassSummary summary;
   std::vector<RevolutionRecord> revolutions;  // one per revolution (runs over many)
   std::vector<ForceBin> force_bins;           // the bins of summary.binned_force (force_bins.csv)
+  // The contact's load–distance and heat along the surface (docs/wear.md): over the pass, or over the
+  // last complete revolution of a run over many (over the pass so far when none completed); and the
+  // profiles of the last kWearRevolutionsKept complete revolutions, oldest first (a period-m orbit's
+  // mean profile is theirs over its last m, wear.hpp's mean_profile).
+  std::vector<WearBin> wear_profile;
+  std::vector<std::vector<WearBin>> wear_revolution_profiles;
   Eigen::VectorXd final_q, final_qd;          // the state where the run ended [m], [m/s]
   double final_t = 0;                         // [s]
   std::optional<NumericalFailure> failure;

@@ -75,6 +75,10 @@ struct PassOptions {
   double near_surface_interval_s = 2e-6;  // output.near_surface_interval_s [s]
   double near_surface_gap_m = 5e-4;       // output.near_surface_gap_m [m] (0: off)
   double bin_deg = 0.5;                   // output.bin_deg: hub-angle bins of the force on the surface [°]
+  int wear_profile_bins = 100;            // wear.profile_bins: bins of the wear profile over the span touched
+  // The span [m] over which a profile whose contact touched one point only (a single impact) is spread:
+  // the contact's own width, the filament's diameter (build_case sets it).
+  double wear_point_span_m = 5.08e-4;
 };
 
 }  // namespace rotbeam

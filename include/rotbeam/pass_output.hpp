@@ -37,6 +37,9 @@ std::string history_csv(const PassResult& result, int n);
 std::string events_csv(const PassResult& result);
 /// force_bins.csv (docs/model.md §7): the force on the surface in hub-angle bins, impacts included.
 std::string force_bins_csv(const PassResult& result);
+/// wear_profile.csv's text (docs/wear.md) and summary.json's `wear` object, from a pass's wear report.
+std::string wear_profile_csv(const WearReport& w, const WearSettings& settings);
+nlohmann::json wear_json(const WearReport& w);
 /// summary.json: the metrics, contact intervals, warnings, failure (or null), the surface as it
 /// describes itself, and the resolved config.
 nlohmann::json summary_json(const PassResult& result, const Config& config, const Surface& surface);

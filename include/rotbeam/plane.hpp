@@ -22,6 +22,9 @@ public:
   double max_gap_on_arc(double radius, double theta_from, double theta_to, double excursion) const override;
   /// The plane x = d is deepest along +X: θ = 0.
   double deepest_angle() const override { return 0.0; }
+  /// Y, the position along the plane [m] (0 at its point nearest the hub).
+  double material_coordinate(const Eigen::Vector2d& position, double t) const override;
+  SurfaceCoordinate coordinate() const override { return {"position along the plane", "m", 1.0, 0.0}; }
   nlohmann::json describe() const override;
 
 private:

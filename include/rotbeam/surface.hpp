@@ -14,6 +14,15 @@
 
 namespace rotbeam {
 
+/// What a surface's material coordinate measures (Surface::material_coordinate): the wear profile's
+/// abscissa (docs/wear.md).
+struct SurfaceCoordinate {
+  const char* name;         // "position along the plane", "angle around the cylinder", …
+  const char* unit;         // "m" or "deg"
+  double metres_per_unit;   // surface length per unit of the coordinate [m/unit] (the nominal radius's arc for an angle)
+  double period;            // the coordinate's period [unit] (0: not periodic)
+};
+
 class Surface {
 public:
   virtual ~Surface() = default;
@@ -33,6 +42,11 @@ public:
   /// The beam angle [rad] (mod 2π) at which the undeformed filament points at the surface's deepest
   /// point: 0° of the per-revolution angles (docs/model.md §11).
   virtual double deepest_angle() const = 0;
+  /// The coordinate along the surface of the surface's material point at the global point `position`
+  /// [m] at time t [s]: where on the part the tip touches, in coordinate()'s unit (a spinning surface's
+  /// material turns under the contact). The wear profile bins the contact's load–distance over it.
+  virtual double material_coordinate(const Eigen::Vector2d& position, double t) const = 0;
+  virtual SurfaceCoordinate coordinate() const = 0;
   /// The shape and its parameters for the outputs (summary.json `surface`) and the plots.
   virtual nlohmann::json describe() const = 0;
 };

@@ -21,6 +21,12 @@ double restitution(const ImpactLaw& law, double normal_speed, double full_speed)
   return std::min(e, law.cap);
 }
 
+double linear_sliding_load(double p, double v0, double v1) {
+  const double a0 = std::abs(v0), a1 = std::abs(v1);
+  if (v0 * v1 >= 0.0) return 0.5 * p * (a0 + a1);
+  return 0.5 * p * (a0 * a0 + a1 * a1) / (a0 + a1);
+}
+
 namespace {
 
 // The normal and tangential impulses of a planar impact with Coulomb friction and an energetic
@@ -30,6 +36,7 @@ struct CoulombImpulse {
   double pt = 0;           // tangential impulse along the tangent [N s]
   double slip_work = 0;    // ∫ V_t dP_t (≤ 0) [J]
   double normal_work = 0;  // ∫ Ċ dp over compression and restitution, (1 − e²) times the compression's [J]
+  double sliding_load = 0; // ∫ |V_t| dp [N m] (V_t keeps its sign within a segment)
   bool jammed = false;
 };
 
@@ -84,6 +91,7 @@ CoulombImpulse coulomb_impulse(double ann, double ant, double att, double mu, do
     const double work = vn * dp + 0.5 * dvn * dp * dp;
     (compressing ? w_compression : w_restitution) += work;
     r.slip_work += dpt * (vt * dp + 0.5 * dvt * dp * dp);
+    r.sliding_load += std::abs(vt * dp + 0.5 * dvt * dp * dp);
     r.p += dp;
     r.pt += dpt * dp;
     vn += dvn * dp;
@@ -111,7 +119,7 @@ namespace {
 void finish_impact(const BeamModel& beam, const Surface& surface, double t, const Eigen::Ref<const Eigen::VectorXd>& q,
                    const Eigen::Ref<const Eigen::VectorXd>& qd, BeamWorkspace& ws, TipKinematics& tip, double p, double pt,
                    bool coulomb, double coulomb_work, double v_before_x, double v_before_y, double t2_before,
-                   ImpactResult& r) {
+                   const CoulombImpulse* segments, ImpactResult& r) {
   tip_kinematics(beam, surface, t, q, qd, tip);
   r.vx_after = tip.gap_rate;
   r.vy_after = tip.slip_speed;
@@ -129,6 +137,15 @@ void finish_impact(const BeamModel& beam, const Surface& surface, double t, cons
   else
     r.contact_work = 0.5 * (r.impulse_x * (v_before_x + tip.VX) + r.impulse_y * (v_before_y + tip.VY));
   r.delta_t2 = 0.5 * detail::quadratic_form(ws.mass, qd) - t2_before;
+  // The heat and the load–distance: exact over a Coulomb impulse's segments (V_t is linear in p within
+  // each and keeps its sign); without friction V_t changes linearly with p over the whole impulse.
+  if (segments) {
+    r.frictional_heat = -segments->slip_work;
+    r.sliding_load = segments->sliding_load;
+  } else {
+    r.frictional_heat = 0.0;
+    r.sliding_load = linear_sliding_load(std::abs(p), r.vy_before, r.vy_after);
+  }
 }
 
 }  // namespace
@@ -154,6 +171,7 @@ ImpactResult apply_impact(const BeamModel& beam, const Surface& surface, const I
   const double t2_before = 0.5 * detail::quadratic_form(ws.mass, qd);
   double p = -(1.0 + e) * vx / a, pt = 0.0, coulomb_work = 0.0;
   bool coulomb = law.friction == ImpactFriction::coulomb && mu > 0.0;
+  CoulombImpulse c;
   Eigen::VectorXd& minv_t = ws.scratch2;
   double ant = 0.0, att = 0.0;
   if (coulomb) {
@@ -167,7 +185,7 @@ ImpactResult apply_impact(const BeamModel& beam, const Surface& surface, const I
     coulomb = a * att - ant * ant > 1e-12 * a * att;
   }
   if (coulomb) {
-    const CoulombImpulse c = coulomb_impulse(a, ant, att, mu, e, vx, tip.slip_speed);
+    c = coulomb_impulse(a, ant, att, mu, e, vx, tip.slip_speed);
     if (c.jammed) {
       r.jammed = true;
       tip_kinematics(beam, surface, t, q, qd, tip);
@@ -183,7 +201,8 @@ ImpactResult apply_impact(const BeamModel& beam, const Surface& surface, const I
   r.restitution = e;
   r.effective_inverse_mass = a;
   r.relative_energy_loss = coulomb ? -coulomb_work : 0.5 * (1.0 - e * e) * vx * vx / a;
-  finish_impact(beam, surface, t, q, qd, ws, tip, p, pt, coulomb, coulomb_work, v_before_x, v_before_y, t2_before, r);
+  finish_impact(beam, surface, t, q, qd, ws, tip, p, pt, coulomb, coulomb_work, v_before_x, v_before_y, t2_before,
+                coulomb ? &c : nullptr, r);
   return r;
 }
 
@@ -214,7 +233,8 @@ ImpactResult apply_tangential_impact(const BeamModel& beam, const Surface& surfa
   qd += -c.p * minv_grad + c.pt * minv_t;
   r.restitution = 0.0;
   r.relative_energy_loss = -coulomb_work;
-  finish_impact(beam, surface, t, q, qd, ws, tip, -c.p, c.pt, true, coulomb_work, v_before_x, v_before_y, t2_before, r);
+  finish_impact(beam, surface, t, q, qd, ws, tip, -c.p, c.pt, true, coulomb_work, v_before_x, v_before_y, t2_before, &c,
+                r);
   return r;
 }
 

@@ -312,6 +312,25 @@ std::vector<Key> make_table() {
                   },
                   [](Config& c, const Value& v) { c.simulation.history_revolutions = v.is_string() ? 0 : v.get<int>(); },
                   always});
+  // Wear and frictional heat (docs/wear.md): derived from the ledger's sliding_load and frictional_heat.
+  t.push_back(plain("wear.surface_coefficient", "", one(closed(0, 1)),
+                    "Archard's wear coefficient k of the surface's material",
+                    [](auto& c) -> auto& { return c.wear.surface_coefficient; }));
+  t.push_back(plain("wear.surface_hardness_pa", "Pa", one(above(0, 1e13)), "the hardness H of the surface's material",
+                    [](auto& c) -> auto& { return c.wear.surface_hardness_pa; }));
+  t.push_back(plain("wear.filament_coefficient", "", one(closed(0, 1)), "Archard's wear coefficient k of the filament",
+                    [](auto& c) -> auto& { return c.wear.filament_coefficient; }));
+  t.push_back(plain("wear.filament_hardness_pa", "Pa", one(above(0, 1e13)), "the hardness H of the filament",
+                    [](auto& c) -> auto& { return c.wear.filament_hardness_pa; }));
+  t.push_back(plain("wear.heat_to_filament", "", one(closed(0, 1)),
+                    "the share of the frictional heat that flows into the filament",
+                    [](auto& c) -> auto& { return c.wear.heat_to_filament; }));
+  t.push_back(plain("wear.track_width_m", "m", one(closed(0, 10)),
+                    "the worn track's width across the plane of motion (0: the filament's diameter)",
+                    [](auto& c) -> auto& { return c.wear.track_width_m; }));
+  t.push_back(plain("wear.profile_bins", "", one(integers(1, 100000)),
+                    "bins of the wear profile over the span of the surface the contact touched",
+                    [](auto& c) -> auto& { return c.simulation.wear_profile_bins; }));
   // A brush (docs/brush.md). Up to kMaxBrushFilaments filaments in all; the scatters are relative
   // standard deviations, at most 0.3 so that the ±3σ draws kept stay positive.
   t.push_back(plain("brush.filaments", "", one(integers(1, kMaxBrushFilaments)),

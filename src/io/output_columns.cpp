@@ -75,6 +75,50 @@ std::vector<OutputFile> make_files() {
   bins.columns.push_back(integer("impacts", "impacts in the bin"));
   files.push_back(bins);
 
+  // `rotbeam wear` (docs/wear.md).
+  files.push_back(
+      {"wear_history.csv",
+       {integer("step", "the slow-time step, 0 …"),
+        number("time_h", "h", "operating time at the step's start"),
+        number("length_m", "m", "the filament's free length L"),
+        number("length_lost_m", "m", "the length lost since the start of the run"),
+        {"steady", "", ColumnKind::boolean, "whether the steady state was reached within simulation.revolutions", {}},
+        integer("period_revolutions", "the steady orbit's period (0: not reached)"),
+        integer("revolutions_run", "revolutions the steady-state search ran"),
+        number("section_distance", "1", "the steady-state test's final section distance"),
+        integer("impacts_per_revolution", "impacts per revolution on the orbit"),
+        number("mean_normal_force_n", "N", "the normal impulse per revolution over its duration"),
+        number("mean_hub_torque_n_m", "N m", "the hub's mean torque"),
+        number("mean_hub_power_w", "W", "the hub's mean power"),
+        number("sliding_load_n_m", "N m", "Archard's load–distance per revolution"),
+        number("removal_rate_mm3_h", "mm^3/h", "the surface's worn volume per hour of operation"),
+        number("length_rate_mm_h", "mm/h", "the filament's length lost per hour"),
+        number("heat_w", "W", "the frictional heat made per second"),
+        number("heat_to_surface_w", "W", "its share that flows into the surface"),
+        number("wall_time_s", "s", "the steady-state search's wall time")}});
+  files.push_back(
+      {"wear_depth.csv",
+       {number("position_from_m", "m", "the bin's start along the surface (as in wear_profile.csv)"),
+        number("position_to_m", "m", "the bin's end"),
+        number("coordinate_from", "m or degree", "the bin's start in the surface's own coordinate"),
+        number("coordinate_to", "m or degree", "the bin's end in that coordinate"),
+        number("surface_volume_m3", "m^3", "the surface's worn volume in the bin over the whole run"),
+        number("removed_depth_m", "m", "that volume over the track's width times the bin's length"),
+        number("heat_j", "J", "the frictional heat made in the bin over the run")}});
+
+  files.push_back(
+      {"wear_profile.csv",
+       {number("position_from_m", "m",
+               "the bin's start along the surface: Y on a plane, the arc at the nominal radius from angle 0 on a round surface"),
+        number("position_to_m", "m", "the bin's end"),
+        number("coordinate_from", "m or degree", "the bin's start in the surface's own coordinate (summary.json wear.coordinate_unit)"),
+        number("coordinate_to", "m or degree", "the bin's end in that coordinate"),
+        number("sliding_load_n_m", "N m", "Archard's load–distance ∫F_n|V_t| dt the contact left in the bin"),
+        number("surface_volume_m3", "m^3", "the surface's worn volume in the bin, k_s S / H_s"),
+        number("removed_depth_m", "m", "that volume over the track's width times the bin's length"),
+        number("heat_j", "J", "the frictional heat made in the bin"),
+        number("surface_heat_j_m2", "J/m^2", "the surface's share of it per unit area of the track")}});
+
   OutputFile revs{"revolutions.csv",
                   {integer("revolution", "1, 2, …"),
                    {"complete", "", ColumnKind::boolean, "false for a revolution cut short", {}},

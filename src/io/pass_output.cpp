@@ -112,6 +112,49 @@ std::string force_bins_csv(const PassResult& result) {
   return out;
 }
 
+std::string wear_profile_csv(const WearReport& w, const WearSettings& settings) {
+  std::string out = csv_header(output_file("wear_profile.csv"), 0) + "\n";
+  const double mpu = w.coordinate.metres_per_unit;
+  for (const WearBin& b : w.profile) {
+    const double area = w.track_width_m * (b.to - b.from) * mpu;
+    const double volume = settings.surface_coefficient * b.sliding_load_n_m / settings.surface_hardness_pa;
+    const double values[] = {b.from * mpu,  b.to * mpu,      b.from, b.to, b.sliding_load_n_m, volume,
+                             volume / area, b.heat_j, (1.0 - settings.heat_to_filament) * b.heat_j / area};
+    for (std::size_t k = 0; k < std::size(values); ++k) {
+      if (k) out += ',';
+      put(out, values[k]);
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+nlohmann::json wear_json(const WearReport& w) {
+  double deepest = 0, at = NAN;
+  for (const WearBin& b : w.profile) {
+    const double volume = w.amounts.sliding_load_n_m > 0 ? w.amounts.surface_volume_m3 * b.sliding_load_n_m / w.amounts.sliding_load_n_m : 0.0;
+    const double depth = volume / (w.track_width_m * (b.to - b.from) * w.coordinate.metres_per_unit);
+    if (depth > deepest) deepest = depth, at = 0.5 * (b.from + b.to);
+  }
+  const WearAmounts& a = w.amounts;
+  return {{"per", w.revolutions > 0 ? "revolution" : "pass"},
+          {"revolutions", w.revolutions},
+          {"note", w.note},
+          {"sliding_load_n_m", a.sliding_load_n_m},
+          {"surface_volume_m3", a.surface_volume_m3},
+          {"filament_volume_m3", a.filament_volume_m3},
+          {"filament_length_loss_m", a.filament_length_m},
+          {"frictional_heat_j", a.heat_j},
+          {"heat_to_filament_j", a.heat_to_filament_j},
+          {"heat_to_surface_j", a.heat_to_surface_j},
+          {"max_removed_depth_m", deepest},
+          {"max_removed_depth_at", number_or_null(at)},
+          {"track_width_m", w.track_width_m},
+          {"coordinate", w.coordinate.name},
+          {"coordinate_unit", w.coordinate.unit},
+          {"metres_per_unit", w.coordinate.metres_per_unit}};
+}
+
 std::string revolutions_header(int n) { return csv_header(output_file("revolutions.csv"), n); }
 
 void append_revolution_line(std::string& out, const RevolutionRecord& r) {
@@ -220,6 +263,7 @@ nlohmann::json summary_json(const PassResult& result, const Config& config, cons
   } else {
     j["steady_state"] = nullptr;
   }
+  j["wear"] = wear_json(wear_report(result, config.wear, surface, config.beam.diameter_m, sim.wear_profile_bins));
   j["ended_clear_deg"] = number_or_null(s.ended_clear_deg);
   j["steps"] = s.steps;
   j["rhs_evaluations"] = s.rhs_evaluations;
@@ -339,13 +383,14 @@ PassFiles::PassFiles(const std::filesystem::path& dir, int n, int history_revolu
     // A folder under one of the names the run writes would make the final rename fail after the
     // whole computation: refused before it starts.
     std::error_code ec;
-    refuse_folders_under_file_names(dir, {"history.csv", "events.csv", "revolutions.csv", "force_bins.csv", "summary.json"},
+    refuse_folders_under_file_names(dir, {"history.csv", "events.csv", "revolutions.csv", "force_bins.csv", "wear_profile.csv", "summary.json"},
                                     "the run");
     // With the lock held no live run writes here: temporaries are a killed run's leftovers.
     for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
       const std::string name = e.path().filename().string();
       for (const std::string stem :
-           {"history.csv.tmp.", "events.csv.tmp.", "revolutions.csv.tmp.", "force_bins.csv.tmp.", "summary.json.tmp."})
+           {"history.csv.tmp.", "events.csv.tmp.", "revolutions.csv.tmp.", "force_bins.csv.tmp.", "wear_profile.csv.tmp.",
+            "summary.json.tmp."})
         if (name.rfind(stem, 0) == 0 && is_temporary_suffix(name.substr(stem.size()))) fs::remove(e.path(), ec);
     }
     // An older run's files (summary.json, or the history and events a killed run left) describe that
@@ -362,6 +407,7 @@ PassFiles::PassFiles(const std::filesystem::path& dir, int n, int history_revolu
     fs::remove(dir / "summary.json", ec);  // the folder is not complete until commit()
     if (older_run && !ec) fs::remove(dir / "revolutions.csv", ec);  // the older run's, which this run may not write
     if (older_run && !ec) fs::remove(dir / "force_bins.csv", ec);
+    if (older_run && !ec) fs::remove(dir / "wear_profile.csv", ec);
     if (ec)
       throw std::runtime_error((dir / "summary.json").string() + ": cannot remove the older summary (" + ec.message() + ")");
     open(history_, "history.csv", history_header(n));
@@ -502,10 +548,14 @@ void PassFiles::commit(const PassResult& result, const Config& config, const Sur
   if (revolutions_.file) close(revolutions_);
   const std::string bins = force_bins_csv(result);
   write_file_atomically(dir_ / "force_bins.csv", bins);
+  const std::string wear = wear_profile_csv(
+      wear_report(result, config.wear, surface, config.beam.diameter_m, config.simulation.wear_profile_bins), config.wear);
+  write_file_atomically(dir_ / "wear_profile.csv", wear);
   nlohmann::json j = summary_json(result, config, surface);
   j["files"] = {{"history.csv", {{"bytes", history_.bytes}}},
                 {"events.csv", {{"bytes", events_.bytes}}},
-                {"force_bins.csv", {{"bytes", bins.size()}}}};
+                {"force_bins.csv", {{"bytes", bins.size()}}},
+                {"wear_profile.csv", {{"bytes", wear.size()}}}};
   if (!revolutions_.final_path.empty()) j["files"]["revolutions.csv"] = {{"bytes", revolutions_.bytes}};
   write_file_atomically(dir_ / "summary.json", j.dump(2) + "\n");
   committed_ = true;

@@ -39,6 +39,8 @@ void EnergyLedger::impact(const ImpactView& v) {
   // The impulse's work less a moving surface's part (which is the surface's work, not a loss).
   jump[LedgerTerm::impact_loss] = r.contact_work - r.surface_work;
   jump[LedgerTerm::surface_work] = r.surface_work;
+  jump[LedgerTerm::frictional_heat] = r.frictional_heat;
+  jump[LedgerTerm::sliding_load] = r.sliding_load;
   s.ledger += jump;
   s.hub_impulsive_work_j += v.hub_work;
 }

@@ -34,12 +34,13 @@ PassRecorder::PassRecorder(const System& system, const PassOptions& options, con
       metrics_(ctx_),
       ledger_(ctx_),
       bins_(ctx_),
+      wear_(ctx_),
       validity_(ctx_, *this),
       book_(ctx_) {
   if (ctx_.sink.wants_deliveries()) deliveries_.emplace(ctx_, ledger_);
   observers_ = {&ledger_};
   if (deliveries_) observers_.push_back(&*deliveries_);
-  observers_.insert(observers_.end(), {&metrics_, &bins_, &validity_, &sampler_, &book_});
+  observers_.insert(observers_.end(), {&metrics_, &bins_, &wear_, &validity_, &sampler_, &book_});
 }
 
 bool PassRecorder::stop_requested(double t, const Eigen::VectorXd& q) {

@@ -1,7 +1,7 @@
 // The record of a pass for the driver (docs/model.md §7): its events, and its observers (pass_observer.hpp),
 // each keeping one account — the history rows (history_sampler.hpp), the contact metrics
 // (contact_metrics.hpp), the energy ledger and its audit (energy_ledger.hpp), the force on the surface
-// by hub angle (force_binning.hpp), the momentum deliveries for a sink that asks (deliveries.hpp), the
+// by hub angle (force_binning.hpp), the load–distance and heat along the surface (wear_profile.hpp), the momentum deliveries for a sink that asks (deliveries.hpp), the
 // validity (validity_monitor.hpp) and the revolutions (revolution_book.hpp). Rows and events go to
 // the pass's sink as they are produced (or into PassResult without one, memory_sink.hpp); nothing else
 // grows with the length of the run but the list of contact intervals.
@@ -11,6 +11,7 @@
 #include "deliveries.hpp"
 #include "energy_ledger.hpp"
 #include "force_binning.hpp"
+#include "wear_profile.hpp"
 #include "history_sampler.hpp"
 #include "memory_sink.hpp"
 #include "revolution_book.hpp"
@@ -88,6 +89,7 @@ private:
   ContactMetrics metrics_;
   EnergyLedger ledger_;
   ForceBinning bins_;
+  WearProfile wear_;
   std::optional<Deliveries> deliveries_;  // for a sink that wants them
   ValidityMonitor validity_;
   RevolutionBook book_;

@@ -28,6 +28,7 @@ Case build_case(const Config& config) {
   }
   c.law = make_contact_law(config.contact, config.beam.youngs_modulus_pa, config.beam.diameter_m);
   c.options = config.simulation;
+  c.options.wear_point_span_m = config.beam.diameter_m;
   // The bending modes from initial.*; the coordinates beyond them (an extensible filament's stretch)
   // at the filament's rest state.
   const int n = config.beam.modes;

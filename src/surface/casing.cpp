@@ -72,6 +72,14 @@ GapField Casing::field(const Eigen::Vector2d& p) const {
   return f;
 }
 
+double Casing::material_coordinate(const Eigen::Vector2d& p, double) const {
+  return std::atan2(p.y(), p.x()) * 180.0 / M_PI;
+}
+
+SurfaceCoordinate Casing::coordinate() const {
+  return {"angle around the casing", "deg", (nominal_ + c0_) * M_PI / 180.0, 360.0};
+}
+
 double Casing::gap(const Eigen::Vector2d& position, double) const { return field(position).value; }
 
 void Casing::contact_geometry(TipKinematics& k) const { fill_contact_geometry(field({k.X, k.Y}), SurfaceMotion{}, k); }

@@ -20,6 +20,16 @@ GapField Cylinder::field(const Eigen::Vector2d& p) const {
   return f;
 }
 
+double Cylinder::material_coordinate(const Eigen::Vector2d& p, double t) const {
+  // The angle of P − c measured from −X (the direction of the hub), less the material's turn.
+  const double psi = std::atan2(-p.y(), motion_.centre.x() - p.x()) - motion_.spin * t;
+  return std::remainder(psi, 2.0 * M_PI) * 180.0 / M_PI;
+}
+
+SurfaceCoordinate Cylinder::coordinate() const {
+  return {"angle around the cylinder", "deg", radius_ * M_PI / 180.0, 360.0};
+}
+
 double Cylinder::gap(const Eigen::Vector2d& position, double) const { return field(position).value; }
 
 void Cylinder::contact_geometry(TipKinematics& k) const { fill_contact_geometry(field({k.X, k.Y}), motion_, k); }

@@ -34,6 +34,8 @@ double Plane::max_gap_on_arc(double radius, double theta_from, double theta_to, 
   return radius * std::max(std::cos(theta_from), std::cos(theta_to)) - distance_ + excursion;
 }
 
+double Plane::material_coordinate(const Eigen::Vector2d& position, double) const { return position.y(); }
+
 nlohmann::json Plane::describe() const { return {{"shape", "plane"}, {"distance_m", distance_}}; }
 
 Plane plane_at_depth(const BeamModel& beam, double depth_fraction) {
