@@ -1,5 +1,7 @@
 // rotbeam._core: the C++ library's jobs for Python, with the GIL released while they compute.
 // Configuration errors raise rotbeam._core.ConfigError (a ValueError) with the CLI's message.
+#include "rotbeam/wear_output.hpp"
+#include "rotbeam/wear_run.hpp"
 #include "rotbeam/brush.hpp"
 #include "rotbeam/units.hpp"
 #include "rotbeam/brush_output.hpp"
@@ -171,6 +173,21 @@ py::tuple brush(const std::optional<std::string>& path, const Values& overrides,
   const double omega = rad_per_s_from_rpm(config.beam.speed_rpm);
   return py::make_tuple(from_json(brush_summary_json(result, config)), py::bytes(workpiece_csv(result, omega)),
                         py::bytes(profile_csv(result, omega)), py::bytes(filaments_csv(result)));
+}
+
+py::tuple wear(const std::optional<std::string>& path, const Values& overrides, double hours, int steps) {
+  const Config config = load(path, overrides);
+  if (config.brush) throw ConfigError("brush: wear() runs one filament; leave out the [brush] keys");
+  WearRunOptions options;
+  options.hours = hours;
+  options.steps = steps;
+  const WearRun result = interruptible([&](const StopToken& stop) {
+    WearRunOptions o = options;
+    o.stop = &stop;
+    return run_wear(config, o);
+  });
+  return py::make_tuple(from_json(wear_run_json(result, config, options)), py::bytes(wear_history_csv(result)),
+                        py::bytes(wear_depth_csv(result, config.wear)));
 }
 
 py::object impact(const std::optional<std::string>& path, const Values& overrides) {
@@ -430,6 +447,8 @@ PYBIND11_MODULE(_core, m) {
         "force_bins.csv's text).");
   m.def("brush", &brush, py::arg("path"), py::arg("overrides"), py::arg("threads"),
         "A brush at its steady state: (summary dict, workpiece.csv's, profile.csv's and filaments.csv's text).");
+  m.def("wear", &wear, py::arg("path"), py::arg("overrides"), py::arg("hours"), py::arg("steps"),
+        "Wear over hours of operation: (summary dict, wear_history.csv's and wear_depth.csv's text).");
   m.def("impact", &impact, py::arg("path"), py::arg("overrides"),
         "The first impact as a dict (the fields of `rotbeam impact --json`), or None without impact.");
   m.def("modes", &modes, py::arg("path"), py::arg("overrides"), py::arg("speeds_rpm"),

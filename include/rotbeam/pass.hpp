@@ -44,6 +44,7 @@ struct PassEvent {
   double hub_work = NAN;  // impacts: the work the hub does during the impact [J]
   double impact_loss = NAN;   // impacts: the impulses' work on the tip less a moving surface's part (≤ 0) [J]
   double surface_work = NAN;  // impacts: a moving surface's work through the impact's friction [J]
+  double frictional_heat = NAN;  // impacts: the heat its friction makes, −∫V_t dP_t (≥ 0) [J]
   std::string detail;
 };
 

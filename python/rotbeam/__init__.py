@@ -57,8 +57,8 @@ if TYPE_CHECKING:  # only for the annotations: xarray is imported when a Dataset
 __version__: str = _core.__version__
 """rotbeam's version (project(VERSION) in CMakeLists.txt, the one place it is set)."""
 
-__all__ = ["run", "impact", "modes", "static", "brush", "sweep", "open_sweep", "Result", "BrushResult", "ConfigError",
-           "ConfigFileNotFoundError", "config_keys", "keys", "__version__"]
+__all__ = ["run", "impact", "modes", "static", "brush", "wear", "sweep", "open_sweep", "Result", "BrushResult",
+           "WearResult", "ConfigError", "ConfigFileNotFoundError", "config_keys", "keys", "__version__"]
 
 # What `config` may be: a TOML file's path, a dict shaped like the file, or None for the defaults.
 ConfigLike = Union[str, "os.PathLike[str]", Mapping[str, Mapping[str, Any]], None]
@@ -346,6 +346,35 @@ def brush(config: ConfigLike = None, overrides: Overrides = None, jobs: int = 0)
     summary, workpiece, profile, filaments = _core.brush(path, sets, jobs)
     return BrushResult(summary, _table_arrays(workpiece, "workpiece.csv"), _table_arrays(profile, "profile.csv"),
                        _table_arrays(filaments, "filaments.csv"))
+
+
+class WearResult:
+    """Wear over hours of operation (`rotbeam wear`, docs/wear.md): `summary` (the keys of its
+    summary.json: length_lost_m, volume_removed_m3, heat_j, max_removed_depth_m, …), `history`
+    (numpy arrays by the columns of wear_history.csv: one row per slow-time step, its filament length,
+    mean force, torque, power, removal rate, heat) and `depth` (wear_depth.csv: the surface's removed
+    depth along it over the whole run)."""
+
+    def __init__(self, summary, history, depth):
+        self.summary = summary
+        self.history = history
+        self.depth = depth
+
+    def __repr__(self):
+        s = self.summary
+        return (f"WearResult({s['completed_steps']} of {s['steps']} steps over {s['hours']:g} h, "
+                f"length lost {s['length_lost_m'] * 1e6:.4g} µm, {s['volume_removed_m3'] * 1e9:.4g} mm³ removed)")
+
+
+def wear(config: ConfigLike = None, overrides: Overrides = None, hours: float = 10.0, steps: int = 10) -> WearResult:
+    """A filament's wear and frictional heat over `hours` of operation in `steps` slow-time steps
+    (`rotbeam wear`, docs/wear.md): at each step its periodic steady state, its Archard wear and heat
+    per revolution, and the filament shortened by its tip's wear over the step. config and overrides as
+    for run() (the [wear] keys set the coefficients). Returns a WearResult; a numerical failure ends the
+    run with the steps before it (summary["failure"]). Ctrl-C raises KeyboardInterrupt."""
+    path, sets = _arguments(config, overrides)
+    summary, history, depth = _core.wear(path, sets, float(hours), int(steps))
+    return WearResult(summary, _table_arrays(history, "wear_history.csv"), _table_arrays(depth, "wear_depth.csv"))
 
 
 def impact(config: ConfigLike = None, overrides: Overrides = None) -> dict[str, Any] | None:

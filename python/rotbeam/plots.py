@@ -38,6 +38,7 @@ from ._runs import (check_run_files, check_summary, force_bins, history_columns,
                     impact_impulses, read_run, read_run_table, relative_angle, sustained)
 from ._surface import casing_radius, draw_surface, surface_of, surface_words, surface_x  # noqa: E402
 from .brush_plots import BRUSH_MAP_PANELS, DamagedBrush, brush_figures, read_brush  # noqa: E402
+from .wear_plots import DamagedWear, is_wear_folder, wear_figures  # noqa: E402
 from .rub_map import is_rub_sweep, plot_campbell, rub_map_figure  # noqa: E402
 from .run_plots import (energy_figure, energy_note, force_figure, impacts_figure, modal_figure,  # noqa: E402
                         plot_normal_force, plot_run, run_figures, tip_path_figure)
@@ -88,6 +89,8 @@ def main(argv=None):
             written = plot_sweep(folder, out, args.cases)
         elif (folder / "summary.json").exists() and is_brush_folder(folder):
             written = save_figures(brush_figures(folder), out)
+        elif (folder / "summary.json").exists() and is_wear_folder(folder):
+            written = save_figures(wear_figures(folder), out)
         elif (folder / "summary.json").exists():
             written = plot_run(folder, out)
         elif not folder.exists():
@@ -97,7 +100,7 @@ def main(argv=None):
             print(f"rotbeam: error: {folder}: neither a run folder (summary.json) nor a sweep folder (sweep.csv)",
                   file=sys.stderr)
             return 2
-    except (DamagedFolder, DamagedBrush, OutputFolderError) as e:
+    except (DamagedFolder, DamagedBrush, DamagedWear, OutputFolderError) as e:
         return error(e)
     except OSError as e:  # before ValueError: some OSErrors are not, but say what file and why
         return file_error(e)

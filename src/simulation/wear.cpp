@@ -67,6 +67,10 @@ std::vector<WearBin> WearTrack::bins(int count, double min_span, double weight) 
     lo = std::min({lo, p.s0 + d, p.s1 + d});
     hi = std::max({hi, p.s0 + d, p.s1 + d});
   }
+  // Around a whole period (a tip sliding all the way round): the bins cover one period from half a
+  // period before the first piece, and a piece that runs past its end continues from its start.
+  const bool around = period_ > 0.0 && hi - lo >= period_;
+  if (around) lo = ref - 0.5 * period_, hi = lo + period_;
   if (hi - lo < min_span) {
     const double c = 0.5 * (lo + hi);
     lo = c - 0.5 * min_span, hi = c + 0.5 * min_span;
@@ -75,7 +79,19 @@ std::vector<WearBin> WearTrack::bins(int count, double min_span, double weight) 
   const double h = (hi - lo) / count;
   for (const Piece& p : pieces_) {
     const double d = shift(p.s0);
-    spread(out, lo, h, std::min(p.s0, p.s1) + d, std::max(p.s0, p.s1) + d, weight * p.load, weight * p.heat);
+    double a = std::min(p.s0, p.s1) + d, b = std::max(p.s0, p.s1) + d;
+    const double load = weight * p.load, heat = weight * p.heat;
+    if (around && (a < lo || b > hi)) {
+      if (a < lo) a += period_, b += period_;
+      if (a >= hi) a -= period_, b -= period_;
+      if (b > hi && b > a) {  // the part past the end, from the start
+        const double f = (b - hi) / (b - a);
+        spread(out, lo, h, lo, lo + (b - hi), f * load, f * heat);
+        spread(out, lo, h, a, hi, (1.0 - f) * load, (1.0 - f) * heat);
+        continue;
+      }
+    }
+    spread(out, lo, h, a, b, load, heat);
   }
   return out;
 }
