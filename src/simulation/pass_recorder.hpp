@@ -1,7 +1,8 @@
 // The record of a pass for the driver (docs/model.md §7): its events, and its observers (pass_observer.hpp),
 // each keeping one account — the history rows (history_sampler.hpp), the contact metrics
 // (contact_metrics.hpp), the energy ledger and its audit (energy_ledger.hpp), the force on the surface
-// by hub angle (force_binning.hpp), the load–distance and heat along the surface (wear_profile.hpp), the momentum deliveries for a sink that asks (deliveries.hpp), the
+// by hub angle (force_binning.hpp), the load–distance and heat along the surface (wear_profile.hpp),
+// the momentum deliveries for a sink that asks (deliveries.hpp), the
 // validity (validity_monitor.hpp) and the revolutions (revolution_book.hpp). Rows and events go to
 // the pass's sink as they are produced (or into PassResult without one, memory_sink.hpp); nothing else
 // grows with the length of the run but the list of contact intervals.
