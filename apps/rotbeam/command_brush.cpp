@@ -71,7 +71,7 @@ void print_summary(const Config& config, const BrushResult& r, const std::string
   std::cout << "  wall time             " << fixed(s.wall_time_s, 2) << " s\n";
   for (const std::string& w : s.warnings) std::cout << "  warning: " << w << "\n";
   std::cout << "  wrote " << (std::filesystem::path(dir) / "workpiece.csv").string()
-            << ", filaments.csv, summary.json\n";
+            << ", profile.csv, filaments.csv, wear_profile.csv, summary.json\n";
 }
 
 int run_brush_command(const BrushCommandOptions& o) {

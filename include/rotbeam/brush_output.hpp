@@ -31,6 +31,10 @@ class FolderLock;
 /// refused when it holds a run or a sweep, or a folder under one of the brush's file names; an
 /// older brush's summary.json and pictures are removed at once, so that the folder does not look
 /// complete until commit() writes summary.json last. Throws std::runtime_error naming the path.
+/// A brush's wear per revolution (docs/wear.md): every finished filament's, summed, as wear_profile.csv
+/// and summary.json's `wear` report it.
+WearReport brush_wear_report(const BrushResult& result, const Config& config);
+
 class BrushFiles {
 public:
   explicit BrushFiles(const std::filesystem::path& dir);

@@ -3,6 +3,7 @@
 // the brush's files (brush_output.hpp) write them.
 #pragma once
 
+#include "rotbeam/wear_record.hpp"
 #include "rotbeam/force_record.hpp"
 #include "rotbeam/ledger.hpp"
 #include "rotbeam/outcome.hpp"
@@ -49,6 +50,7 @@ struct FilamentSteadyState {
   // The ledger per revolution (means over the orbit; ledger.hpp) and its largest residual [J].
   Ledger ledger;
   double ledger_residual_max_j = 0;
+  std::vector<WearBin> wear_profile;  // its load–distance and heat along the surface per revolution, the orbit's mean
   double wall_time_s = 0;
   std::optional<NumericalFailure> failure;
   std::string error;  // a run that ended without a failure and without a complete revolution, in words
@@ -98,6 +100,11 @@ struct BrushResult {
   // (0° where a filament points at the surface's deepest point), summed and divided by the number of
   // filaments: the mean filament's force against its angle (impacts counted per filament, summed).
   std::vector<ForceBin> profile;
+  // The load–distance and heat all the filaments leave along the surface per revolution (docs/wear.md),
+  // in the surface's coordinate (its name, unit and metres per unit).
+  std::vector<WearBin> wear_profile;
+  std::string wear_coordinate, wear_coordinate_unit;
+  double wear_metres_per_unit = 1.0;
   BrushSummary summary;
 };
 

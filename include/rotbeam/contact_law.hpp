@@ -126,7 +126,7 @@ struct ContactLoad {
   // The rates of the ledger's terms (ledger.hpp) per second: contact_work q̇ᵀQ [W] (the rate of change
   // of the Jacobi integral), friction_work F_t V_t [W] (≤ 0), surface_work F_t (V_s·t) [W] (a moving
   // surface's power through friction), normal_impulse F_n [N], tangential_impulse F_t [N],
-  // contact_moment X_t F_Y − Y_t F_X [N m], frictional_heat |F_t||V_t| [W], sliding_load F_n|V_t|
+  // contact_moment X_t F_Y − Y_t F_X [N m], frictional_heat −F_t V_t = |F_t||V_t| [W], sliding_load F_n|V_t|
   // [N m/s], and a compliant contact's contact_dissipation [W].
   LedgerValues rate;
 };

@@ -45,6 +45,7 @@ struct PassEvent {
   double impact_loss = NAN;   // impacts: the impulses' work on the tip less a moving surface's part (≤ 0) [J]
   double surface_work = NAN;  // impacts: a moving surface's work through the impact's friction [J]
   double frictional_heat = NAN;  // impacts: the heat its friction makes, −∫V_t dP_t (≥ 0) [J]
+  double sliding_load = NAN;     // impacts: its Archard load–distance ∫|V_t| dp [N m]
   std::string detail;
 };
 

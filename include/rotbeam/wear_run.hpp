@@ -29,7 +29,8 @@ struct WearRunOptions {
 struct WearStep {
   int step = 0;                      // 0, 1, …
   double time_h = 0;                 // operating time at the step's start [h]
-  double duration_h = 0;             // its length in operating time (0 for the last record) [h]
+  double duration_h = 0;             // its length in operating time (0 for the last record; shorter for
+                                     // a step cut where the filament stops reaching the surface) [h]
   double length_m = 0;               // the filament's free length L at the step's start [m]
   bool reaches = true;               // the undeformed tip still reaches the surface
   bool steady = false;               // its steady state was reached within simulation.revolutions

@@ -51,7 +51,10 @@ ContactLoad contact_load_with_friction(const FrictionModel& friction, const TipK
       l.friction_force * (tip.surface_vx * tip.tangent_x + tip.surface_vy * tip.tangent_y);
   l.rate[LedgerTerm::normal_impulse] = l.normal_force;
   l.rate[LedgerTerm::tangential_impulse] = l.friction_force;
-  l.rate[LedgerTerm::frictional_heat] = std::abs(l.friction_force) * std::abs(tip.slip_speed);
+  // Friction's dissipation −F_t V_t, which is |F_t||V_t| on every accepted state (both laws make friction
+  // oppose the slip) and, unlike it, smooth where a slide ends in a stick, whose root the dense output
+  // locates from stages past it.
+  l.rate[LedgerTerm::frictional_heat] = -l.friction_force * tip.slip_speed;
   l.rate[LedgerTerm::sliding_load] = l.normal_force * std::abs(tip.slip_speed);
   return l;
 }

@@ -40,7 +40,53 @@ namespace {
 
 namespace odeint = boost::numeric::odeint;
 using State = std::vector<double>;
-using DenseStepper = odeint::result_of::make_dense_output<odeint::runge_kutta_dopri5<State>>::type;
+
+// Odeint's default error checker (the largest of |err_i| / (atol + rtol(|x_i| + h|ẋ_i|)), computed as
+// it computes it) over the components that steer the steps: the motion and the balance's terms. The
+// terms reported beside the balance (ledger.hpp: frictional heat, Archard's load–distance) ride along
+// on the steps the others choose, so adding such a term changes no step of a pass.
+class SteeringErrorChecker {
+public:
+  using value_type = double;
+  using algebra_type = odeint::range_algebra;
+  using operations_type = odeint::default_operations;
+
+  SteeringErrorChecker(double eps_abs = 1e-6, double eps_rel = 1e-6, std::vector<char> steers = {})
+      : eps_abs_(eps_abs), eps_rel_(eps_rel), steers_(std::move(steers)) {}
+
+  template <class S, class D, class E, class T>
+  double error(const S& x_old, const D& dxdt_old, E& x_err, T dt) const {
+    double worst = 0.0;
+    const double a_dxdt = std::abs(dt);
+    for (std::size_t i = 0; i < x_err.size(); ++i) {
+      if (i < steers_.size() && !steers_[i]) continue;
+      const double e = std::abs(x_err[i]) / (eps_abs_ + eps_rel_ * (1.0 * std::abs(x_old[i]) + a_dxdt * std::abs(dxdt_old[i])));
+      worst = std::max(worst, e);
+    }
+    return worst;
+  }
+  template <class S, class D, class E, class T>
+  double error(algebra_type&, const S& x_old, const D& dxdt_old, E& x_err, T dt) const {
+    return error(x_old, dxdt_old, x_err, dt);
+  }
+
+private:
+  double eps_abs_, eps_rel_;
+  std::vector<char> steers_;  // per component; components past its end steer
+};
+
+using Controlled = odeint::controlled_runge_kutta<odeint::runge_kutta_dopri5<State>, SteeringErrorChecker,
+                                                  odeint::default_step_adjuster<double, double>, odeint::initially_resizer,
+                                                  odeint::explicit_error_stepper_fsal_tag>;
+using DenseStepper = odeint::dense_output_runge_kutta<Controlled, odeint::explicit_controlled_stepper_fsal_tag>;
+
+// The state's components that steer the steps: all but the ledger's terms reported beside the balance.
+std::vector<char> steering_components(int n) {
+  std::vector<char> steers(2 * n + kIntegratedTermCount, 1);
+  for (std::size_t k = 0; k < kIntegratedTermCount; ++k)
+    if (ledger_term_info(kIntegratedTerms[k]).report == LedgerReport::beside) steers[2 * n + k] = 0;
+  return steers;
+}
 
 constexpr int kSamplesPerStep = 4;  // interior samples of the dense output per step (at least)
 // Free flight samples the gap at least this many times per period of the highest linear mode, so
@@ -84,8 +130,9 @@ public:
         pq_(n_),
         pqd_(n_),
         pa_(n_),
-        stepper_(odeint::make_dense_output(options.atol, options.rtol, options.max_step_s,
-                                           odeint::runge_kutta_dopri5<State>())) {
+        stepper_(Controlled(SteeringErrorChecker(options.atol, options.rtol, steering_components(n_)),
+                            odeint::default_step_adjuster<double, double>(options.max_step_s),
+                            odeint::runge_kutta_dopri5<State>())) {
     if (opt_.integrating_factor == FactorUse::always ||
         (opt_.integrating_factor == FactorUse::automatic && !sys_.beam.damped())) {
       factor_.emplace(sys_.beam.linearization());

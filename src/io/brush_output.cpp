@@ -26,7 +26,7 @@ void put(std::string& out, double v) {
 
 nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
-constexpr const char* kFiles[] = {"workpiece.csv", "profile.csv", "filaments.csv", "summary.json"};
+constexpr const char* kFiles[] = {"workpiece.csv", "profile.csv", "filaments.csv", "wear_profile.csv", "summary.json"};
 constexpr const char* kPictures[] = {"brush_force.png", "brush_profile.png", "brush_filaments.png"};
 
 }  // namespace
@@ -81,10 +81,25 @@ std::string filaments_csv(const BrushResult& result) {
   return out;
 }
 
+WearReport brush_wear_report(const BrushResult& result, const Config& config) {
+  WearReport w;
+  w.revolutions = 1;
+  w.profile = result.wear_profile;
+  double load = 0, heat = 0;
+  for (const WearBin& b : w.profile) load += b.sliding_load_n_m, heat += b.heat_j;
+  w.amounts = wear_amounts(config.wear, load, heat, config.beam.diameter_m);
+  w.track_width_m = config.wear.track_width_m > 0.0 ? config.wear.track_width_m : config.beam.diameter_m;
+  w.coordinate = {result.wear_coordinate.c_str(), result.wear_coordinate_unit.c_str(), result.wear_metres_per_unit, 0.0};
+  w.note = "per revolution: every finished filament's steady orbit, summed; the filaments' volume and length "
+           "loss at the nominal diameter";
+  return w;
+}
+
 nlohmann::json brush_summary_json(const BrushResult& result, const Config& config) {
   const BrushSummary& s = result.summary;
   nlohmann::json j;
   j["kind"] = "brush";
+  j["wear"] = wear_json(brush_wear_report(result, config));
   j["filaments"] = s.filaments;
   j["distinct_filaments"] = s.distinct_filaments;
   j["reaching_filaments"] = s.reaching;
@@ -181,10 +196,13 @@ void BrushFiles::commit(const BrushResult& result, const Config& config) {
   write_file_atomically(dir_ / "workpiece.csv", workpiece);
   write_file_atomically(dir_ / "profile.csv", profile);
   write_file_atomically(dir_ / "filaments.csv", filaments);
+  const std::string wear = wear_profile_csv(brush_wear_report(result, config), config.wear);
+  write_file_atomically(dir_ / "wear_profile.csv", wear);
   nlohmann::json j = brush_summary_json(result, config);
   j["files"] = {{"workpiece.csv", {{"bytes", workpiece.size()}}},
                 {"profile.csv", {{"bytes", profile.size()}}},
-                {"filaments.csv", {{"bytes", filaments.size()}}}};
+                {"filaments.csv", {{"bytes", filaments.size()}}},
+                {"wear_profile.csv", {{"bytes", wear.size()}}}};
   write_file_atomically(dir_ / "summary.json", j.dump(2) + "\n");
 }
 

@@ -64,6 +64,7 @@ std::vector<OutputFile> make_files() {
                     optional("impact_loss_j", "J", "an impact's loss: its impulses' work on the tip less a moving surface's part"),
                     optional("surface_work_j", "J", "a moving surface's work through an impact's friction"),
                     optional("frictional_heat_j", "J", "the heat an impact's friction makes (docs/wear.md)"),
+                    optional("sliding_load_n_m", "N m", "an impact's Archard load–distance ∫|V_t| dp (docs/wear.md)"),
                     {"detail", "", ColumnKind::text, "the event in words", {}}}});
   const std::vector<OutputColumn> bins_head = {
       number("theta_from_deg", "degree", "the bin's first hub angle, relative to the surface's deepest point"),

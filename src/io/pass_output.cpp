@@ -78,7 +78,7 @@ void append_event_line(std::string& out, const PassEvent& e) {
   out += ',';
   out += event_name(e.kind);
   for (double v : {e.y_tip, e.vx_before, e.vx_after, e.restitution, e.impulse, e.tangential_impulse, e.hub_work,
-                   e.impact_loss, e.surface_work, e.frictional_heat}) {
+                   e.impact_loss, e.surface_work, e.frictional_heat, e.sliding_load}) {
     out += ',';
     if (!std::isnan(v)) put(out, v);  // empty: not defined for this kind of event
   }

@@ -137,6 +137,7 @@ void PassRecorder::impact(double t, const Eigen::VectorXd& q, const Eigen::Vecto
   e.hub_work = v.hub_work;
   e.impact_loss = r.contact_work - r.surface_work;  // as the ledger books them (energy_ledger.cpp)
   e.frictional_heat = r.frictional_heat;
+  e.sliding_load = r.sliding_load;
   e.surface_work = r.surface_work;
   e.detail = r.tangential            ? "tangential: an impact without collision at a Painlevé point, the slip stopped"
              : r.restitution == 0.0 ? "plastic"

@@ -4,6 +4,7 @@
 #include "rotbeam/force_bins.hpp"
 #include "rotbeam/job_runner.hpp"
 #include "rotbeam/units.hpp"
+#include "rotbeam/wear.hpp"
 
 #include <boost/random/mersenne_twister.hpp>
 #include <boost/random/normal_distribution.hpp>
@@ -153,6 +154,7 @@ FilamentSteadyState run_distinct(const Config& config, const std::vector<const B
       for (const MomentumDelivery& d : rev->first) bins.add(d, f->phase_deg, weight);
   for (const auto* rev : orbit)
     for (const MomentumDelivery& d : rev->first) profile.add(d, 0.0, weight * static_cast<double>(copies.size()));
+  s.wear_profile = mean_profile(r.wear_revolution_profiles, static_cast<int>(orbit.size()), config.simulation.wear_profile_bins);
   return s;
 }
 
@@ -260,6 +262,12 @@ BrushResult run_brush(const Config& config, const BrushOptions& options) {
       result.distinct[g].reaches = false;
   }
   const std::vector<Config> configs = brush_filament_configs(config, result.filaments);
+  {
+    const SurfaceCoordinate k = build_case(configs.front()).surface->coordinate();
+    result.wear_coordinate = k.name;
+    result.wear_coordinate_unit = k.unit;
+    result.wear_metres_per_unit = k.metres_per_unit;
+  }
   const double omega = rad_per_s_from_rpm(config.beam.speed_rpm);
   ForceBins total(config.simulation.bin_deg, omega), profile(config.simulation.bin_deg, omega);
   // Each group's bins are summed into the total in group order, whatever order the groups finish
@@ -313,6 +321,7 @@ BrushResult run_brush(const Config& config, const BrushOptions& options) {
   s.distinct_filaments = group_count;
   s.bin_deg = config.simulation.bin_deg;
   s.revolution_period_s = 2.0 * M_PI / omega;
+  std::vector<double> wear_copies(result.distinct.size(), 0.0);  // finished filaments of each group
   for (const BrushFilament& f : result.filaments) {
     const FilamentSteadyState& d = result.distinct[f.group];
     if (!d.reaches) continue;
@@ -337,6 +346,7 @@ BrushResult run_brush(const Config& config, const BrushOptions& options) {
     s.mean_tangential_force_n += d.mean_tangential_force_n;
     s.mean_hub_torque_n_m += d.mean_hub_torque_n_m;
     s.ledger += d.ledger;
+    wear_copies[f.group] += 1;
     s.ledger.energy_change_j += d.ledger.energy_change_j;
     s.ledger_residual_max_j += d.ledger_residual_max_j;
     if (std::isfinite(d.first_contact_deg)) {
@@ -348,6 +358,15 @@ BrushResult run_brush(const Config& config, const BrushOptions& options) {
   }
   s.mean_hub_power_w = s.mean_hub_torque_n_m * omega;
   s.missing_force_fraction = missing_force_fraction(result);
+  // The wear along the surface: every finished filament's profile, summed (docs/wear.md).
+  std::vector<std::vector<WearBin>> wear_profiles;
+  std::vector<double> wear_weights;
+  for (std::size_t g = 0; g < result.distinct.size(); ++g)
+    if (wear_copies[g] > 0 && !result.distinct[g].wear_profile.empty()) {
+      wear_profiles.push_back(result.distinct[g].wear_profile);
+      wear_weights.push_back(wear_copies[g]);
+    }
+  result.wear_profile = rebin(wear_profiles, wear_weights, config.simulation.wear_profile_bins);
   if (std::isfinite(s.contact_zone_from_deg)) s.contact_zone_deg = s.contact_zone_to_deg - s.contact_zone_from_deg;
   double along_min = INFINITY, along_max = -INFINITY;
   for (const FilamentSteadyState& d : result.distinct)

@@ -5,6 +5,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 namespace rotbeam {
 
@@ -24,14 +26,27 @@ Config worn_config(const Config& base, double length_m) {
 
 namespace {
 
+// A number as a message shows it: the shortest form that reads back ("-1", "0.0635").
+std::string shown(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  for (int p = 1; p <= 17; ++p) {
+    char shorter[32];
+    std::snprintf(shorter, sizeof shorter, "%.*g", p, v);
+    if (std::strtod(shorter, nullptr) == v) return shorter;
+  }
+  return buf;
+}
+
 double clock_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-// Whether the undeformed filament of `config` (not yet validated: a depth at or below zero) reaches its surface.
-bool reaches(const Config& base, double length_m) {
-  if (base.surface.shape == SurfaceShape::casing) return true;  // decided by the run: a casing has no depth key
-  return base.surface.depth_fraction * base.beam.length_m - (base.beam.length_m - length_m) > 0.0;
+// The shortest free length whose undeformed filament still reaches a plane or a cylinder of `base`
+// (p L − (L0 − L) > 0); 0 for a casing, whose reach the runs decide (its lobes have no depth key).
+double shortest_reaching_length(const Config& base) {
+  if (base.surface.shape == SurfaceShape::casing) return 0.0;
+  return base.beam.length_m * (1.0 - base.surface.depth_fraction);
 }
 
 }  // namespace
@@ -39,7 +54,7 @@ bool reaches(const Config& base, double length_m) {
 WearRun run_wear(const Config& config, const WearRunOptions& o) {
   if (config.brush) throw ConfigError("brush.*: `rotbeam wear` runs one filament; give a configuration without [brush]");
   if (!(o.hours > 0) || !std::isfinite(o.hours))
-    throw ConfigError("--hours " + std::to_string(o.hours) + ": must be a positive number of hours");
+    throw ConfigError("--hours " + shown(o.hours) + ": must be a positive number of hours");
   if (o.steps < 1 || o.steps > 100000) throw ConfigError("--steps " + std::to_string(o.steps) + ": must be 1 … 100000");
   Config base = config;
   base.simulation.until_steady = true;
@@ -55,25 +70,25 @@ WearRun run_wear(const Config& config, const WearRunOptions& o) {
   const double dt_h = o.hours / o.steps;
   std::vector<std::vector<WearBin>> profiles;
   std::vector<double> weights;
-  double length = base.beam.length_m;
+  double length = base.beam.length_m, time_h = 0;
   for (int k = 0; k <= o.steps; ++k) {
     WearStep s;
     s.step = k;
-    s.time_h = k * dt_h;
+    s.time_h = time_h;
     s.duration_h = k < o.steps ? dt_h : 0.0;
     s.length_m = length;
     if (o.on_step) o.on_step(k, o.steps, length);
     if (o.stop && o.stop->stop_requested()) {
       run.stopped_early = true;
-      run.note = "stopped on request at " + std::to_string(s.time_h) + " h";
+      run.note = "stopped on request at " + shown(s.time_h) + " h";
       break;
     }
-    if (!reaches(base, length)) {
+    if (!(length > shortest_reaching_length(base))) {
       s.reaches = false;
       run.steps.push_back(s);
       run.stopped_early = true;
-      run.note = "the filament no longer reaches the surface at L = " + std::to_string(length) + " m after " +
-                 std::to_string(s.time_h) + " h: wear stops";
+      run.note = "the filament no longer reaches the surface at L = " + shown(length) + " m after " +
+                 shown(s.time_h) + " h: wear stops";
       break;
     }
     const double start = clock_s();
@@ -85,7 +100,7 @@ WearRun run_wear(const Config& config, const WearRunOptions& o) {
       run.steps.push_back(s);
       run.failure = r.failure;
       run.stopped_early = true;
-      run.note = "the steady-state run at L = " + std::to_string(length) + " m failed: " + r.failure->message;
+      run.note = "the steady-state run at L = " + shown(length) + " m failed: " + r.failure->message;
       break;
     }
     const WearReport w = wear_report(r, c.wear, *cs.surface, c.beam.diameter_m, c.simulation.wear_profile_bins);
@@ -118,6 +133,13 @@ WearRun run_wear(const Config& config, const WearRunOptions& o) {
     s.length_rate_m_h = w.amounts.filament_length_m * rev_per_hour;
     s.heat_rate_w = w.amounts.heat_j / rev_period_s;
     s.length_lost_m = s.length_rate_m_h * s.duration_h;
+    // A step that would wear the filament past its reach wears only until then (at the step's rate).
+    const double reach = shortest_reaching_length(base);
+    if (reach > 0.0 && s.length_lost_m > length - reach) {
+      const double share = (length - reach) / s.length_lost_m;
+      s.duration_h *= share;
+      s.length_lost_m = length - reach;
+    }
     s.volume_removed_m3 = s.removal_rate_m3_h * s.duration_h;
     if (s.duration_h > 0.0 && !s.profile.empty()) {
       profiles.push_back(s.profile);
@@ -129,11 +151,12 @@ WearRun run_wear(const Config& config, const WearRunOptions& o) {
     run.steps.push_back(s);
     if (k < o.steps && w.amounts.sliding_load_n_m <= 0.0) {
       run.stopped_early = true;
-      run.note = "the filament no longer touches the surface at L = " + std::to_string(length) + " m after " +
-                 std::to_string(s.time_h) + " h: wear stops";
+      run.note = "the filament no longer touches the surface at L = " + shown(length) + " m after " +
+                 shown(s.time_h) + " h: wear stops";
       break;
     }
     length -= s.length_lost_m;
+    time_h += s.duration_h;
   }
   if (!profiles.empty()) run.removed_profile = rebin(profiles, weights, base.simulation.wear_profile_bins);
   return run;
