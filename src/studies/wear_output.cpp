@@ -101,6 +101,8 @@ nlohmann::json wear_run_json(const WearRun& run, const Config& config, const Wea
     const WearStep& a = run.steps.front();
     const WearStep& b = run.steps.back();
     j["mean_normal_force_n"] = {{"start", a.mean_normal_force_n}, {"end", b.mean_normal_force_n}};
+    j["force_change"] = a.mean_normal_force_n > 0 ? number_or_null(b.mean_normal_force_n / a.mean_normal_force_n - 1.0)
+                                                  : nlohmann::json(nullptr);
     j["removal_rate_mm3_h"] = {{"start", a.removal_rate_m3_h * 1e9}, {"end", b.removal_rate_m3_h * 1e9}};
   }
   int not_steady = 0;
