@@ -29,10 +29,14 @@ void print_summary(const Config& config, const WearRun& r, const WearRunOptions&
   std::cout << "Wear: " << number_text(o.hours) << " h of operation in " << o.steps << " steps, "
             << number_text(config.beam.speed_rpm) << " rpm, " << surface_text(config) << ", μ = "
             << config.contact.friction.mu << ", " << modes_text(config) << "\n";
-  if (!r.steps.empty()) {
-    const WearStep& a = r.steps.front();
-    const WearStep& b = r.steps.back();
-    std::cout << "  filament length       " << fixed(a.length_m * 1e3, 4) << " mm → "
+  const WearStep* first = nullptr;
+  const WearStep* last = nullptr;
+  for (const WearStep& s : r.steps)
+    if (s.ran) last = &s, first = first ? first : &s;
+  if (first) {
+    const WearStep& a = *first;
+    const WearStep& b = *last;
+    std::cout << "  filament length       " << fixed(r.steps.front().length_m * 1e3, 4) << " mm → "
               << fixed((config.beam.length_m - r.length_lost_m) * 1e3, 4) << " mm (lost "
               << number_text(r.length_lost_m * 1e6) << " µm)\n";
     std::cout << "  mean normal force     " << fixed(a.mean_normal_force_n, 5) << " N → " << fixed(b.mean_normal_force_n, 5)
@@ -43,11 +47,12 @@ void print_summary(const Config& config, const WearRun& r, const WearRunOptions&
     std::cout << "  frictional heat       " << number_text(a.heat_rate_w) << " → " << number_text(b.heat_rate_w)
               << " W; " << number_text(r.heat_j) << " J in all\n";
     int not_steady = 0;
-    for (const WearStep& s : r.steps) not_steady += s.reaches && !s.steady;
+    for (const WearStep& s : r.steps) not_steady += s.ran && !s.steady;
     if (not_steady > 0)
       std::cout << "  warning: " << not_steady << " of " << r.steps.size()
                 << " steady-state searches did not settle within simulation.revolutions: their last revolution is used\n";
   }
+  for (const std::string& w : r.warnings) std::cout << "  warning: " << w << "\n";
   if (!r.note.empty()) std::cout << "  note: " << r.note << "\n";
   std::cout << "  wrote " << (std::filesystem::path(dir) / "wear_history.csv").string()
             << ", wear_depth.csv, summary.json (pictures: rotbeam plot " << dir << ")\n";

@@ -105,6 +105,7 @@ struct BrushResult {
   std::vector<WearBin> wear_profile;
   std::string wear_coordinate, wear_coordinate_unit;
   double wear_metres_per_unit = 1.0;
+  double wear_period = 0.0;  // the coordinate's period (0: not periodic)
   BrushSummary summary;
 };
 

@@ -67,14 +67,21 @@ private:
 };
 
 /// Moves the bins of several profiles (each exact in its sums) onto `count` equal bins over the span
-/// they all cover, by overlap: the totals are kept to round-off. Weights scale each profile.
+/// they all cover, by overlap: the totals are kept to round-off. Weights scale each profile. On a
+/// periodic coordinate (period > 0) the profiles are folded onto one window about their circular mean,
+/// so that a spot of the surface has one place whichever revolution put it at φ or φ − 360°.
 std::vector<WearBin> rebin(const std::vector<std::vector<WearBin>>& profiles, const std::vector<double>& weights,
-                           int count);
+                           int count, double period = 0.0);
+
+/// A profile's totals spread evenly over one period of its coordinate in `count` bins: where a spinning
+/// cylinder's wear falls over many revolutions (its spin and the hub's are not locked).
+std::vector<WearBin> spread_around(const std::vector<WearBin>& profile, int count, double period);
 
 /// The mean profile per revolution of a period-m orbit: the last m of a pass's revolution profiles
 /// (PassResult::wear_revolution_profiles) rebinned onto `count` bins with weight 1/m each. Empty when
 /// fewer than m were kept.
-std::vector<WearBin> mean_profile(const std::vector<std::vector<WearBin>>& revolution_profiles, int m, int count);
+std::vector<WearBin> mean_profile(const std::vector<std::vector<WearBin>>& revolution_profiles, int m, int count,
+                                  double period = 0.0);
 
 /// What a pass wore and heated, as summary.json's `wear` and wear_profile.csv report it: over the pass
 /// (revolutions = 0), or per revolution as the mean over the steady orbit's period (or the last

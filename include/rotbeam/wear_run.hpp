@@ -33,11 +33,12 @@ struct WearStep {
                                      // a step cut where the filament stops reaching the surface) [h]
   double length_m = 0;               // the filament's free length L at the step's start [m]
   bool reaches = true;               // the undeformed tip still reaches the surface
+  bool ran = false;                  // its steady-state search finished (the quantities below are its)
   bool steady = false;               // its steady state was reached within simulation.revolutions
   int period_revolutions = 0;
   int revolutions_run = 0;
-  double section_distance = NAN;     // the steady-state test's final section distance
-  int impacts_per_revolution = 0;
+  double section_distance = NAN;     // the section distance over the orbit's period at the search's end
+  double impacts_per_revolution = 0; // the orbit's mean
   double mean_normal_force_n = 0;    // normal impulse per revolution over its duration [N]
   double mean_hub_torque_n_m = 0;
   double mean_hub_power_w = 0;
@@ -47,7 +48,7 @@ struct WearStep {
   double heat_rate_w = 0;            // the frictional heat per second [W]
   double length_lost_m = 0;          // over the step: length_rate × duration [m]
   double volume_removed_m3 = 0;      // over the step [m³]
-  std::vector<WearBin> profile;      // per revolution
+  std::vector<WearBin> profile;      // per revolution (spread round a spinning cylinder)
   double wall_time_s = 0;
 };
 
@@ -61,6 +62,7 @@ struct WearRun {
   double track_width_m = 0;
   bool stopped_early = false;            // the filament no longer reaches, a run failed or a stop was asked
   std::string note;                      // why it stopped early, or ""
+  std::vector<std::string> warnings;     // steps too long for explicit Euler
   std::optional<NumericalFailure> failure;
 };
 

@@ -86,7 +86,8 @@ def wear_figure(summary, history, depth):
             x = 0.5 * (depth["position_from_m"] + depth["position_to_m"]) * 1e3
             a_depth.set_xlabel(f"{summary.get('coordinate', 'position')} (mm)")
         a_depth.step(x, depth["removed_depth_m"] * 1e6, where="mid", color="C1")
-        a_depth.set_ylabel(f"removed depth after {summary['hours']:g} h (µm)")
+        ran = history["time_h"][-1] if t.size else 0.0
+        a_depth.set_ylabel(f"removed depth after {ran:.4g} h (µm)")
         a_depth.grid(alpha=0.3)
     a_len.set_title("the filament shortens by its tip's wear", fontsize=9)
     a_force.set_title("the force and torque it then gives", fontsize=9)

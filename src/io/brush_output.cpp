@@ -89,7 +89,7 @@ WearReport brush_wear_report(const BrushResult& result, const Config& config) {
   for (const WearBin& b : w.profile) load += b.sliding_load_n_m, heat += b.heat_j;
   w.amounts = wear_amounts(config.wear, load, heat, config.beam.diameter_m);
   w.track_width_m = config.wear.track_width_m > 0.0 ? config.wear.track_width_m : config.beam.diameter_m;
-  w.coordinate = {result.wear_coordinate.c_str(), result.wear_coordinate_unit.c_str(), result.wear_metres_per_unit, 0.0};
+  w.coordinate = {result.wear_coordinate.c_str(), result.wear_coordinate_unit.c_str(), result.wear_metres_per_unit, result.wear_period};
   w.note = "per revolution: every finished filament's steady orbit, summed; the filaments' volume and length "
            "loss at the nominal diameter";
   return w;

@@ -58,8 +58,17 @@ std::vector<WearBin> empty_bins(double lo, double hi, int count) {
 
 std::vector<WearBin> WearTrack::bins(int count, double min_span, double weight) const {
   if (pieces_.empty() || count < 1) return {};
-  // A periodic coordinate: every piece moved by whole periods to start within half a period of the first.
-  const double ref = pieces_.front().s0;
+  // A periodic coordinate: every piece moved by whole periods to start within half a period of the
+  // load-weighted circular mean of the pieces (so the same spot of the surface has one place).
+  double ref = pieces_.front().s0;
+  if (period_ > 0.0) {
+    double c = 0, s = 0;
+    for (const Piece& p : pieces_) {
+      const double a = 2.0 * M_PI * 0.5 * (p.s0 + p.s1) / period_, w = p.load + p.heat;
+      c += w * std::cos(a), s += w * std::sin(a);
+    }
+    if (c != 0.0 || s != 0.0) ref = std::atan2(s, c) * period_ / (2.0 * M_PI);
+  }
   auto shift = [&](double s0) { return period_ > 0.0 ? ref + std::remainder(s0 - ref, period_) - s0 : 0.0; };
   double lo = INFINITY, hi = -INFINITY;
   for (const Piece& p : pieces_) {
@@ -97,7 +106,21 @@ std::vector<WearBin> WearTrack::bins(int count, double min_span, double weight) 
 }
 
 std::vector<WearBin> rebin(const std::vector<std::vector<WearBin>>& profiles, const std::vector<double>& weights,
-                           int count) {
+                           int count, double period) {
+  if (period > 0.0) {
+    // Folded as a track of the bins' pieces (each a span; a wide one split so that no half exceeds half a period).
+    WearTrack track(period);
+    for (std::size_t k = 0; k < profiles.size(); ++k)
+      for (const WearBin& b : profiles[k]) {
+        const int parts = static_cast<int>(std::ceil((b.to - b.from) / (0.25 * period)));
+        for (int i = 0; i < std::max(parts, 1); ++i) {
+          const double f = 1.0 / std::max(parts, 1);
+          track.add(b.from + i * f * (b.to - b.from), b.from + (i + 1) * f * (b.to - b.from),
+                    f * weights[k] * b.sliding_load_n_m, f * weights[k] * b.heat_j);
+        }
+      }
+    return track.bins(count, 0.0);
+  }
   double lo = INFINITY, hi = -INFINITY;
   for (const auto& p : profiles)
     for (const WearBin& b : p) lo = std::min(lo, b.from), hi = std::max(hi, b.to);
@@ -110,10 +133,19 @@ std::vector<WearBin> rebin(const std::vector<std::vector<WearBin>>& profiles, co
   return out;
 }
 
-std::vector<WearBin> mean_profile(const std::vector<std::vector<WearBin>>& revolution_profiles, int m, int count) {
+std::vector<WearBin> mean_profile(const std::vector<std::vector<WearBin>>& revolution_profiles, int m, int count,
+                                  double period) {
   if (m < 1 || static_cast<int>(revolution_profiles.size()) < m) return {};
   const std::vector<std::vector<WearBin>> last(revolution_profiles.end() - m, revolution_profiles.end());
-  return rebin(last, std::vector<double>(m, 1.0 / m), count);
+  return rebin(last, std::vector<double>(m, 1.0 / m), count, period);
+}
+
+std::vector<WearBin> spread_around(const std::vector<WearBin>& profile, int count, double period) {
+  double load = 0, heat = 0;
+  for (const WearBin& b : profile) load += b.sliding_load_n_m, heat += b.heat_j;
+  std::vector<WearBin> out = empty_bins(-0.5 * period, 0.5 * period, std::max(count, 1));
+  for (WearBin& b : out) b.sliding_load_n_m = load / out.size(), b.heat_j = heat / out.size();
+  return out;
 }
 
 WearReport wear_report(const PassResult& result, const WearSettings& w, const Surface& surface,
@@ -137,7 +169,7 @@ WearReport wear_report(const PassResult& result, const WearSettings& w, const Su
       r.profile = result.wear_profile;
     } else {
       r.revolutions = m;
-      r.profile = mean_profile(result.wear_revolution_profiles, m, profile_bins);
+      r.profile = mean_profile(result.wear_revolution_profiles, m, profile_bins, r.coordinate.period);
       if (r.note.empty())
         r.note = st.reached ? "per revolution: the mean over the steady orbit's period of " + std::to_string(m)
                             : "per revolution: the last complete revolution (no steady state was sought or reached)";

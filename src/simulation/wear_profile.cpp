@@ -34,8 +34,10 @@ void WearProfile::step(const StepView& v) {
 }
 
 void WearProfile::impact(const ImpactView& v) {
+  // An impact's load–distance over the contact's own width (the filament's diameter) about its point:
+  // a point would put it all into one bin whatever the bins' width.
   const double s = coordinate(v.t, v.q);
-  track_.add(s, s, v.result.sliding_load, v.result.frictional_heat);
+  track_.add(s - 0.5 * min_span_, s + 0.5 * min_span_, v.result.sliding_load, v.result.frictional_heat);
 }
 
 void WearProfile::contact_start(double t, const Eigen::VectorXd& q, const ContactLoad&, bool) {

@@ -154,7 +154,13 @@ FilamentSteadyState run_distinct(const Config& config, const std::vector<const B
       for (const MomentumDelivery& d : rev->first) bins.add(d, f->phase_deg, weight);
   for (const auto* rev : orbit)
     for (const MomentumDelivery& d : rev->first) profile.add(d, 0.0, weight * static_cast<double>(copies.size()));
-  s.wear_profile = mean_profile(r.wear_revolution_profiles, static_cast<int>(orbit.size()), config.simulation.wear_profile_bins);
+  // The wear along the surface; round a spinning cylinder, whose material turns under the contact and
+  // under each copy's phase, spread evenly (wear.hpp).
+  const SurfaceCoordinate k = c.surface->coordinate();
+  s.wear_profile = mean_profile(r.wear_revolution_profiles, static_cast<int>(orbit.size()), config.simulation.wear_profile_bins,
+                                k.period);
+  if (config.surface.shape == SurfaceShape::cylinder && config.surface.speed_rpm != 0.0)
+    s.wear_profile = spread_around(s.wear_profile, config.simulation.wear_profile_bins, k.period);
   return s;
 }
 
@@ -267,6 +273,7 @@ BrushResult run_brush(const Config& config, const BrushOptions& options) {
     result.wear_coordinate = k.name;
     result.wear_coordinate_unit = k.unit;
     result.wear_metres_per_unit = k.metres_per_unit;
+    result.wear_period = k.period;
   }
   const double omega = rad_per_s_from_rpm(config.beam.speed_rpm);
   ForceBins total(config.simulation.bin_deg, omega), profile(config.simulation.bin_deg, omega);
@@ -366,7 +373,7 @@ BrushResult run_brush(const Config& config, const BrushOptions& options) {
       wear_profiles.push_back(result.distinct[g].wear_profile);
       wear_weights.push_back(wear_copies[g]);
     }
-  result.wear_profile = rebin(wear_profiles, wear_weights, config.simulation.wear_profile_bins);
+  result.wear_profile = rebin(wear_profiles, wear_weights, config.simulation.wear_profile_bins, result.wear_period);
   if (std::isfinite(s.contact_zone_from_deg)) s.contact_zone_deg = s.contact_zone_to_deg - s.contact_zone_from_deg;
   double along_min = INFINITY, along_max = -INFINITY;
   for (const FilamentSteadyState& d : result.distinct)

@@ -51,11 +51,13 @@ std::string wear_history_csv(const WearRun& run) {
     put(out, lost);
     out += s.steady ? ",true," : ",false,";
     out += std::to_string(s.period_revolutions) + ',' + std::to_string(s.revolutions_run) + ',';
-    put(out, s.section_distance);
-    out += ',' + std::to_string(s.impacts_per_revolution) + ',';
-    put_row(out, {s.mean_normal_force_n, s.mean_hub_torque_n_m, s.mean_hub_power_w, s.per_revolution.sliding_load_n_m,
-                  s.removal_rate_m3_h * 1e9, s.length_rate_m_h * 1e3, s.heat_rate_w,
-                  s.heat_rate_w * (s.per_revolution.heat_j > 0 ? s.per_revolution.heat_to_surface_j / s.per_revolution.heat_j : 0.0),
+    // A step whose search did not finish (a failure, a stop, a filament that no longer reaches) has
+    // no orbit: nan, not zeros.
+    const double x = s.ran ? 1.0 : NAN;
+    put_row(out, {s.section_distance, x * s.impacts_per_revolution, x * s.mean_normal_force_n, x * s.mean_hub_torque_n_m,
+                  x * s.mean_hub_power_w, x * s.per_revolution.sliding_load_n_m, x * s.removal_rate_m3_h * 1e9,
+                  x * s.length_rate_m_h * 1e3, x * s.heat_rate_w,
+                  x * s.heat_rate_w * (s.per_revolution.heat_j > 0 ? s.per_revolution.heat_to_surface_j / s.per_revolution.heat_j : 0.0),
                   s.wall_time_s});
     lost += s.length_lost_m;
   }
@@ -97,16 +99,21 @@ nlohmann::json wear_run_json(const WearRun& run, const Config& config, const Wea
   j["coordinate"] = run.coordinate.name ? run.coordinate.name : "";
   j["coordinate_unit"] = run.coordinate.unit ? run.coordinate.unit : "";
   j["track_width_m"] = run.track_width_m;
-  if (!run.steps.empty()) {
-    const WearStep& a = run.steps.front();
-    const WearStep& b = run.steps.back();
+  const WearStep* first = nullptr;
+  const WearStep* last = nullptr;
+  for (const WearStep& s : run.steps)
+    if (s.ran) last = &s, first = first ? first : &s;
+  j["warnings"] = run.warnings;
+  if (first) {
+    const WearStep& a = *first;
+    const WearStep& b = *last;
     j["mean_normal_force_n"] = {{"start", a.mean_normal_force_n}, {"end", b.mean_normal_force_n}};
     j["force_change"] = a.mean_normal_force_n > 0 ? number_or_null(b.mean_normal_force_n / a.mean_normal_force_n - 1.0)
                                                   : nlohmann::json(nullptr);
     j["removal_rate_mm3_h"] = {{"start", a.removal_rate_m3_h * 1e9}, {"end", b.removal_rate_m3_h * 1e9}};
   }
   int not_steady = 0;
-  for (const WearStep& s : run.steps) not_steady += s.reaches && !s.steady;
+  for (const WearStep& s : run.steps) not_steady += s.ran && !s.steady;
   j["steps_not_steady"] = not_steady;
   if (run.failure)
     j["failure"] = {{"kind", failure_name(run.failure->kind)},

@@ -42,11 +42,16 @@ double clock_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-// The shortest free length whose undeformed filament still reaches a plane or a cylinder of `base`
-// (p L − (L0 − L) > 0); 0 for a casing, whose reach the runs decide (its lobes have no depth key).
+// The shortest free length whose undeformed filament still reaches the surface of `base`, which stays
+// in place: a plane or a cylinder while p L − (L0 − L) > 0; a casing while its deepest clearance
+// c0 + (L0 − L) − A (2A under the benchmark's law) stays below 0.
 double shortest_reaching_length(const Config& base) {
-  if (base.surface.shape == SurfaceShape::casing) return 0.0;
-  return base.beam.length_m * (1.0 - base.surface.depth_fraction);
+  const SurfaceParameters& sp = base.surface;
+  if (sp.shape == SurfaceShape::casing) {
+    const double deepest = sp.clearance_m - (sp.lobe_law == "benchmark" ? 2.0 : 1.0) * (sp.lobes ? sp.lobe_amplitude_m : 0.0);
+    return base.beam.length_m + deepest;
+  }
+  return base.beam.length_m * (1.0 - sp.depth_fraction);
 }
 
 }  // namespace
@@ -71,6 +76,8 @@ WearRun run_wear(const Config& config, const WearRunOptions& o) {
   std::vector<std::vector<WearBin>> profiles;
   std::vector<double> weights;
   double length = base.beam.length_m, time_h = 0;
+  const double reach = shortest_reaching_length(base);
+  const bool spinning = base.surface.shape == SurfaceShape::cylinder && base.surface.speed_rpm != 0.0;
   for (int k = 0; k <= o.steps; ++k) {
     WearStep s;
     s.step = k;
@@ -79,11 +86,12 @@ WearRun run_wear(const Config& config, const WearRunOptions& o) {
     s.length_m = length;
     if (o.on_step) o.on_step(k, o.steps, length);
     if (o.stop && o.stop->stop_requested()) {
+      s.ran = false;
       run.stopped_early = true;
       run.note = "stopped on request at " + shown(s.time_h) + " h";
       break;
     }
-    if (!(length > shortest_reaching_length(base))) {
+    if (!(length > reach)) {
       s.reaches = false;
       run.steps.push_back(s);
       run.stopped_early = true;
@@ -92,11 +100,22 @@ WearRun run_wear(const Config& config, const WearRunOptions& o) {
       break;
     }
     const double start = clock_s();
-    const Config c = worn_config(base, length);
+    Config c;
+    try {
+      c = worn_config(base, length);
+    } catch (const ConfigError& e) {
+      s.reaches = false;
+      run.steps.push_back(s);
+      run.stopped_early = true;
+      run.note = "the worn filament (L = " + shown(length) + " m) is no longer a case the model builds (" + e.what() +
+                 ") after " + shown(s.time_h) + " h: wear stops";
+      break;
+    }
     const Case cs = build_case(c);
     const PassResult r = run_case(cs, {nullptr, o.stop, {}});
     s.wall_time_s = clock_s() - start;
     if (r.failure) {
+      s.ran = false;
       run.steps.push_back(s);
       run.failure = r.failure;
       run.stopped_early = true;
@@ -112,12 +131,18 @@ WearRun run_wear(const Config& config, const WearRunOptions& o) {
     s.steady = st.reached;
     s.period_revolutions = st.reached ? st.period_revolutions : 0;
     s.revolutions_run = r.summary.revolutions;
-    s.section_distance = st.final_distance;
     s.per_revolution = w.amounts;
-    s.profile = w.profile;
-    // The orbit's mean per revolution of the impacts, the normal impulse and the hub's work.
+    s.profile = spinning ? spread_around(w.profile, c.simulation.wear_profile_bins, w.coordinate.period) : w.profile;
+    // The orbit's mean per revolution of the impacts, the normal impulse and the hub's work; its
+    // section distance over its period (the steady test's measure).
     const int m = std::max(w.revolutions, 1);
-    int impacts = 0;
+    const std::size_t kept = r.revolutions.size();
+    s.section_distance = kept > static_cast<std::size_t>(m)
+                             ? section_distance(section_state(*cs.beam, r.revolutions[kept - 1].q, r.revolutions[kept - 1].qd),
+                                                section_state(*cs.beam, r.revolutions[kept - 1 - m].q,
+                                                              r.revolutions[kept - 1 - m].qd))
+                             : st.final_distance;
+    double impacts = 0;
     double normal = 0, hub = 0;
     for (int j = 0; j < m && j < static_cast<int>(r.revolutions.size()); ++j) {
       const RevolutionRecord& rev = r.revolutions[r.revolutions.size() - 1 - j];
@@ -126,6 +151,7 @@ WearRun run_wear(const Config& config, const WearRunOptions& o) {
       hub += rev.ledger[LedgerTerm::hub_work];
     }
     s.impacts_per_revolution = impacts / m;
+    s.ran = true;
     s.mean_normal_force_n = normal / m / rev_period_s;
     s.mean_hub_power_w = hub / m / rev_period_s;
     s.mean_hub_torque_n_m = s.mean_hub_power_w / (2.0 * M_PI / rev_period_s);
@@ -134,12 +160,16 @@ WearRun run_wear(const Config& config, const WearRunOptions& o) {
     s.heat_rate_w = w.amounts.heat_j / rev_period_s;
     s.length_lost_m = s.length_rate_m_h * s.duration_h;
     // A step that would wear the filament past its reach wears only until then (at the step's rate).
-    const double reach = shortest_reaching_length(base);
-    if (reach > 0.0 && s.length_lost_m > length - reach) {
+    if (s.length_lost_m > length - reach) {
       const double share = (length - reach) / s.length_lost_m;
       s.duration_h *= share;
       s.length_lost_m = length - reach;
     }
+    // Explicit Euler holds the step's rates: a step that uses up much of what is left of the reach
+    // changes the contact within it, and is said to be too long.
+    if (s.length_lost_m > 0.1 * (length - reach) && run.warnings.size() < 5)
+      run.warnings.push_back("step " + std::to_string(k) + " wore " + shown(s.length_lost_m) + " m of the " +
+                             shown(length - reach) + " m left before the filament stops reaching: give more --steps");
     s.volume_removed_m3 = s.removal_rate_m3_h * s.duration_h;
     if (s.duration_h > 0.0 && !s.profile.empty()) {
       profiles.push_back(s.profile);
@@ -158,7 +188,7 @@ WearRun run_wear(const Config& config, const WearRunOptions& o) {
     length -= s.length_lost_m;
     time_h += s.duration_h;
   }
-  if (!profiles.empty()) run.removed_profile = rebin(profiles, weights, base.simulation.wear_profile_bins);
+  if (!profiles.empty()) run.removed_profile = rebin(profiles, weights, base.simulation.wear_profile_bins, run.coordinate.period);
   return run;
 }
 
