@@ -8,6 +8,8 @@
 // plugs into the same surfaces, contact laws, steppers and outputs (docs/architecture.md).
 #pragma once
 
+#include "rotbeam/mass_factor.hpp"
+
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <memory>
@@ -36,7 +38,7 @@ struct BeamWorkspace {
   BeamWorkspace& operator=(const BeamWorkspace&) = delete;
   int n;
   Eigen::MatrixXd mass;                  // M(q) [kg]
-  Eigen::LLT<Eigen::MatrixXd> mass_llt;  // Cholesky factor of M(q)
+  MassFactor mass_llt;                   // Cholesky factor of M(q) (mass_factor.hpp)
   Eigen::VectorXd psi;                   // Ψ(q, q̇): every term of the equations of motion but M q̈ [N]
   Eigen::VectorXd scratch, scratch2;     // free for the caller's solves (size n)
 };
@@ -152,3 +154,4 @@ double tip_reach(const BeamModel& beam, const Eigen::Ref<const Eigen::VectorXd>&
 inline constexpr double kReachLimit = 1.01;
 
 }  // namespace rotbeam
+
