@@ -155,8 +155,11 @@ py::tuple run(const std::optional<std::string>& path, const Values& overrides) {
   check_history_fits(c, available_memory_bytes(), true);  // the whole history is kept in memory
   const PassResult result = interruptible([&](const StopToken& stop) { return run_case(c, {nullptr, &stop}); });
   const nlohmann::json summary = summary_json(result, config, *c.surface);
+  const std::string wear = wear_profile_csv(
+      wear_report(result, config.wear, *c.surface, config.beam.diameter_m, config.simulation.wear_profile_bins), config.wear);
   return py::make_tuple(from_json(summary), history_arrays(result, coordinate_count(config.beam)), event_dicts(result),
-                        py::bytes(revolutions_csv(result, coordinate_count(config.beam))), py::bytes(force_bins_csv(result)));
+                        py::bytes(revolutions_csv(result, coordinate_count(config.beam))), py::bytes(force_bins_csv(result)),
+                        py::bytes(wear));
 }
 
 py::tuple brush(const std::optional<std::string>& path, const Values& overrides, int threads) {
@@ -172,7 +175,8 @@ py::tuple brush(const std::optional<std::string>& path, const Values& overrides,
   });
   const double omega = rad_per_s_from_rpm(config.beam.speed_rpm);
   return py::make_tuple(from_json(brush_summary_json(result, config)), py::bytes(workpiece_csv(result, omega)),
-                        py::bytes(profile_csv(result, omega)), py::bytes(filaments_csv(result)));
+                        py::bytes(profile_csv(result, omega)), py::bytes(filaments_csv(result)),
+                        py::bytes(wear_profile_csv(brush_wear_report(result, config), config.wear)));
 }
 
 py::tuple wear(const std::optional<std::string>& path, const Values& overrides, double hours, int steps) {
@@ -444,9 +448,10 @@ PYBIND11_MODULE(_core, m) {
   });
   m.def("run", &run, py::arg("path"), py::arg("overrides"),
         "A whole pass: (summary dict, history dict of arrays, list of event dicts, revolutions.csv's text, "
-        "force_bins.csv's text).");
+        "force_bins.csv's text, wear_profile.csv's text).");
   m.def("brush", &brush, py::arg("path"), py::arg("overrides"), py::arg("threads"),
-        "A brush at its steady state: (summary dict, workpiece.csv's, profile.csv's and filaments.csv's text).");
+        "A brush at its steady state: (summary dict, workpiece.csv's, profile.csv's, filaments.csv's and "
+        "wear_profile.csv's text).");
   m.def("wear", &wear, py::arg("path"), py::arg("overrides"), py::arg("hours"), py::arg("steps"),
         "Wear over hours of operation: (summary dict, wear_history.csv's and wear_depth.csv's text).");
   m.def("impact", &impact, py::arg("path"), py::arg("overrides"),

@@ -224,8 +224,10 @@ class Result:
     """A whole pass or a run over many revolutions: `summary` (the keys of summary.json), `history`
     (numpy arrays by the column names of history.csv), `events` (dicts with the columns of
     events.csv), `revolutions` (numpy arrays by the column names of revolutions.csv, one entry per
-    revolution; empty for one pass) and `force_bins` (numpy arrays by the column names of
-    force_bins.csv: the force on the surface in hub-angle bins, impacts included). History and
+    revolution; empty for one pass), `force_bins` (numpy arrays by the column names of
+    force_bins.csv: the force on the surface in hub-angle bins, impacts included) and `wear_profile`
+    (wear_profile.csv's columns: the contact's load–distance, worn volume, removed depth and heat
+    along the surface, docs/wear.md; summary["wear"] has the totals). History and
     events hold the last `output.history_revolutions` revolutions, as the files do; `revolutions`
     holds every one."""
 
@@ -234,15 +236,18 @@ class Result:
     events: list[dict[str, Any]]
     revolutions: dict[str, "numpy.ndarray"]
     force_bins: dict[str, "numpy.ndarray"]
+    wear_profile: dict[str, "numpy.ndarray"]
 
     def __init__(self, summary: dict[str, Any], history: dict[str, "numpy.ndarray"], events: list[dict[str, Any]],
                  revolutions: dict[str, "numpy.ndarray"] | None = None,
-                 force_bins: dict[str, "numpy.ndarray"] | None = None):
+                 force_bins: dict[str, "numpy.ndarray"] | None = None,
+                 wear_profile: dict[str, "numpy.ndarray"] | None = None):
         self.summary = summary
         self.history = history
         self.events = events
         self.revolutions = revolutions if revolutions is not None else {}
         self.force_bins = force_bins if force_bins is not None else {}
+        self.wear_profile = wear_profile if wear_profile is not None else {}
 
     @property
     def failure(self) -> dict[str, Any] | None:
@@ -296,9 +301,9 @@ def run(config: ConfigLike = None, overrides: Overrides = None) -> Result:
     >>> r.summary["impacts"], r.history["normal_force_n"].max()
     """
     path, sets = _arguments(config, overrides)
-    summary, history, events, revolutions, force_bins = _core.run(path, sets)
+    summary, history, events, revolutions, force_bins, wear = _core.run(path, sets)
     return Result(summary, history, events, _table_arrays(revolutions, "revolutions.csv"),
-                  _table_arrays(force_bins, "force_bins.csv"))
+                  _table_arrays(force_bins, "force_bins.csv"), _table_arrays(wear, "wear_profile.csv"))
 
 
 class BrushResult:
@@ -306,20 +311,23 @@ class BrushResult:
     summary.json), `workpiece` (numpy arrays by the columns of workpiece.csv: the force, torque and
     power on the workpiece in hub-angle bins over one revolution), `profile` (the same columns for the
     mean filament against its own angle across the contact zone, profile.csv) and `filaments` (numpy
-    arrays by the columns of filaments.csv, one entry per filament). The tables are dicts of
+    arrays by the columns of filaments.csv, one entry per filament) and `wear_profile` (wear_profile.csv:
+    the wear all the filaments leave along the surface per revolution, docs/wear.md). The tables are dicts of
     equal-length arrays: pandas.DataFrame(r.workpiece) makes a data frame of one."""
 
     summary: dict[str, Any]
     workpiece: dict[str, "numpy.ndarray"]
     profile: dict[str, "numpy.ndarray"]
     filaments: dict[str, "numpy.ndarray"]
+    wear_profile: dict[str, "numpy.ndarray"]
 
     def __init__(self, summary: dict[str, Any], workpiece: dict[str, "numpy.ndarray"], profile: dict[str, "numpy.ndarray"],
-                 filaments: dict[str, "numpy.ndarray"]):
+                 filaments: dict[str, "numpy.ndarray"], wear_profile: dict[str, "numpy.ndarray"] | None = None):
         self.summary = summary
         self.workpiece = workpiece
         self.profile = profile
         self.filaments = filaments
+        self.wear_profile = wear_profile if wear_profile is not None else {}
 
     @property
     def failure(self) -> dict[str, Any] | None:
@@ -343,9 +351,9 @@ def brush(config: ConfigLike = None, overrides: Overrides = None, jobs: int = 0)
     the others). Ctrl-C stops the filaments under way and raises KeyboardInterrupt."""
     jobs = _jobs(jobs)
     path, sets = _arguments(config, overrides)
-    summary, workpiece, profile, filaments = _core.brush(path, sets, jobs)
+    summary, workpiece, profile, filaments, wear = _core.brush(path, sets, jobs)
     return BrushResult(summary, _table_arrays(workpiece, "workpiece.csv"), _table_arrays(profile, "profile.csv"),
-                       _table_arrays(filaments, "filaments.csv"))
+                       _table_arrays(filaments, "filaments.csv"), _table_arrays(wear, "wear_profile.csv"))
 
 
 class WearResult:

@@ -84,3 +84,8 @@ def test_a_runs_wear_profile_sums_to_its_worn_volume(tmp_path):
     area = width * (profile["position_to_m"] - profile["position_from_m"])
     assert np.sum(profile["removed_depth_m"] * area) == pytest.approx(wear["surface_volume_m3"], rel=1e-12)
     assert summary["files"]["wear_profile.csv"]["bytes"] == (out / "wear_profile.csv").stat().st_size
+    # The same table from Python, for a run and for a brush.
+    r = rotbeam.run()
+    assert r.wear_profile["sliding_load_n_m"] == pytest.approx(profile["sliding_load_n_m"], rel=1e-12)
+    b = rotbeam.brush(overrides={"beam.damping_ratio": 0.05, "brush.filaments": 2}, jobs=1)
+    assert np.sum(b.wear_profile["sliding_load_n_m"]) == pytest.approx(b.summary["wear"]["sliding_load_n_m"], rel=1e-12)
