@@ -55,6 +55,16 @@ void prepare_output_folder(const std::filesystem::path& dir);
 void refuse_folders_under_file_names(const std::filesystem::path& dir, const std::vector<std::string>& names,
                                      const std::string& writer);
 
+/// Opens `dir` for a study that writes `files` with summary.json last (a brush, a wear run; `what`
+/// names it: "a brush"): refuses a folder that holds another kind of output (a run, a sweep, a brush,
+/// a wear run, a reproduction) and folders under the names of its files, creates the folder, locks it,
+/// and removes an older summary.json (so the folder is not complete until the new one is written)
+/// with, when there was one, the `pictures` drawn from it. Returns the lock; throws
+/// std::runtime_error naming the path.
+std::unique_ptr<FolderLock> open_study_folder(const std::filesystem::path& dir, const std::string& what,
+                                              const std::vector<std::string>& files,
+                                              const std::vector<std::string>& pictures);
+
 /// Streams a pass into `dir`: history.csv and events.csv are written into temporaries beside their
 /// final names as the rows and events arrive, and commit() renames them into place and then writes
 /// summary.json (with the sizes of the two files under `files`, so a reader can tell a complete

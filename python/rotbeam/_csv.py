@@ -191,3 +191,25 @@ def _values(spec, column, values, lines, where, error):
     if values and not _COLUMN_RE[empty_ok].fullmatch("\n".join(values)):
         bad(lambda v: _NUMBER_RE.fullmatch(v) or (empty_ok and v == ""), "a number")
     return np.array([float(v) if v else math.nan for v in values], dtype=float)
+
+
+def read_study_summary(folder, kind, error):
+    """The summary.json of a study's folder (`"kind": kind`, "brush" or "wear"), checked: it is that
+    kind's, and every file it lists has the size it records. Raises `error` naming the file."""
+    import json
+    folder = Path(folder)
+    try:
+        summary = json.loads((folder / "summary.json").read_text())
+    except json.JSONDecodeError as e:
+        raise error(f"{folder / 'summary.json'}: not valid JSON ({e})") from None
+    if not isinstance(summary, dict) or summary.get("kind") != kind or not isinstance(summary.get("files"), dict):
+        raise error(f"{folder / 'summary.json'}: not a rotbeam {kind} summary")
+    for name, entry in summary["files"].items():
+        path = folder / name
+        if not path.exists():
+            raise error(f"{path}: missing (summary.json lists it)")
+        if path.stat().st_size != entry.get("bytes"):
+            raise error(f"{path}: {path.stat().st_size} bytes where summary.json records {entry.get('bytes')}: "
+                        "the folder holds files of different runs, or a damaged one")
+    return summary
+

@@ -9,7 +9,6 @@ ratio against the first varied key, a line per value of the others (force agains
 per speed: the brush-stiffness curves brush makers measure).
 """
 
-import json
 from pathlib import Path
 
 # rotbeam._figures first: where matplotlib is missing it says so in one line.
@@ -18,7 +17,7 @@ from ._figures import DEG, draw_all
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from ._csv import read_csv  # noqa: E402
+from ._csv import read_csv, read_study_summary  # noqa: E402
 from ._surface import surface_words  # noqa: E402
 
 
@@ -30,19 +29,7 @@ def read_brush(folder):
     """(summary, workpiece, profile, filaments) of a brush folder, checked: summary.json is a brush's
     and every file it lists has the size it records."""
     folder = Path(folder)
-    try:
-        summary = json.loads((folder / "summary.json").read_text())
-    except json.JSONDecodeError as e:
-        raise DamagedBrush(f"{folder / 'summary.json'}: not valid JSON ({e})") from None
-    if not isinstance(summary, dict) or summary.get("kind") != "brush" or not isinstance(summary.get("files"), dict):
-        raise DamagedBrush(f"{folder / 'summary.json'}: not a rotbeam brush summary")
-    for name, entry in summary["files"].items():
-        path = folder / name
-        if not path.exists():
-            raise DamagedBrush(f"{path}: missing (summary.json lists it)")
-        if path.stat().st_size != entry.get("bytes"):
-            raise DamagedBrush(f"{path}: {path.stat().st_size} bytes where summary.json records {entry.get('bytes')}: "
-                               "the folder holds files of different runs, or a damaged one")
+    summary = read_study_summary(folder, "brush", DamagedBrush)
     tables = [read_csv(folder / name, error=DamagedBrush)
               for name in ("workpiece.csv", "profile.csv", "filaments.csv")]
     return (summary, *tables)

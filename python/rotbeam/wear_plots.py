@@ -11,7 +11,7 @@ from ._figures import draw_all
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from ._csv import read_csv  # noqa: E402
+from ._csv import read_csv, read_study_summary  # noqa: E402
 from ._surface import surface_words  # noqa: E402
 
 
@@ -30,19 +30,7 @@ def is_wear_folder(folder):
 def read_wear(folder):
     """(summary, history, depth) of a wear folder, checked against the sizes summary.json records."""
     folder = Path(folder)
-    try:
-        summary = json.loads((folder / "summary.json").read_text())
-    except json.JSONDecodeError as e:
-        raise DamagedWear(f"{folder / 'summary.json'}: not valid JSON ({e})") from None
-    if not isinstance(summary, dict) or summary.get("kind") != "wear" or not isinstance(summary.get("files"), dict):
-        raise DamagedWear(f"{folder / 'summary.json'}: not a rotbeam wear summary")
-    for name, entry in summary["files"].items():
-        path = folder / name
-        if not path.exists():
-            raise DamagedWear(f"{path}: missing (summary.json lists it)")
-        if path.stat().st_size != entry.get("bytes"):
-            raise DamagedWear(f"{path}: {path.stat().st_size} bytes where summary.json records {entry.get('bytes')}: "
-                              "the folder holds files of different runs, or a damaged one")
+    summary = read_study_summary(folder, "wear", DamagedWear)
     return (summary, read_csv(folder / "wear_history.csv", error=DamagedWear),
             read_csv(folder / "wear_depth.csv", error=DamagedWear))
 

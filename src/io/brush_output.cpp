@@ -156,35 +156,10 @@ nlohmann::json brush_summary_json(const BrushResult& result, const Config& confi
   return j;
 }
 
-BrushFiles::BrushFiles(const std::filesystem::path& dir) : dir_(dir) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  if (fs::exists(dir / "sweep.csv", ec))
-    throw std::runtime_error(dir.string() + ": holds a sweep (sweep.csv), not a brush; give another folder");
-  if (fs::exists(dir / "history.csv", ec))
-    throw std::runtime_error(dir.string() + ": holds a run (history.csv), not a brush; give another folder");
-  if (fs::exists(dir / "manifest.json", ec) && fs::exists(dir / "report.md", ec))
-    throw std::runtime_error(dir.string() + ": holds a reproduction (manifest.json, report.md), not a brush; give another folder");
-  prepare_output_folder(dir);
-  lock_ = std::make_unique<FolderLock>(dir);
-  try {
-    refuse_folders_under_file_names(dir, {std::begin(kFiles), std::end(kFiles)}, "the brush");
-  } catch (const std::runtime_error&) {
-    lock_.reset();
-    throw;
-  }
-  // An older brush's summary (and pictures) go now: until commit() the folder is not complete.
-  const bool older = fs::is_regular_file(fs::symlink_status(dir / "summary.json", ec));
-  ec.clear();
-  fs::remove(dir / "summary.json", ec);
-  if (ec) {
-    lock_.reset();
-    throw std::runtime_error((dir / "summary.json").string() + ": cannot remove the older summary (" + ec.message() + ")");
-  }
-  if (older)
-    for (const char* drawn : kPictures)  // the pictures, not a folder of the user's under their name
-      if (fs::is_regular_file(fs::symlink_status(dir / drawn, ec))) fs::remove(dir / drawn, ec);
-}
+BrushFiles::BrushFiles(const std::filesystem::path& dir)
+    : dir_(dir),
+      lock_(open_study_folder(dir, "a brush", {std::begin(kFiles), std::end(kFiles)},
+                              {std::begin(kPictures), std::end(kPictures)})) {}
 
 BrushFiles::~BrushFiles() = default;
 

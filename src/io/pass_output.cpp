@@ -6,6 +6,7 @@
 #include "rotbeam/ledger_output.hpp"
 #include "rotbeam/output_columns.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -316,6 +317,35 @@ void refuse_folders_under_file_names(const std::filesystem::path& dir, const std
   for (const std::string& name : names)
     if (std::filesystem::is_directory(std::filesystem::symlink_status(dir / name, ec)))
       throw std::runtime_error((dir / name).string() + ": is a folder, where " + writer + " writes its file " + name);
+}
+
+std::unique_ptr<FolderLock> open_study_folder(const std::filesystem::path& dir, const std::string& what,
+                                              const std::vector<std::string>& files,
+                                              const std::vector<std::string>& pictures) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  // Another kind of output, known by a file only it writes (its own kind's file is in `files`).
+  const std::pair<const char*, const char*> kinds[] = {{"sweep.csv", "a sweep"},
+                                                       {"history.csv", "a run"},
+                                                       {"workpiece.csv", "a brush"},
+                                                       {"wear_history.csv", "a wear run"},
+                                                       {"report.md", "a reproduction"}};
+  for (const auto& [file, kind] : kinds)
+    if (std::find(files.begin(), files.end(), file) == files.end() && fs::exists(dir / file, ec))
+      throw std::runtime_error(dir.string() + ": holds " + kind + " (" + file + "), not " + what +
+                               "; give another folder");
+  prepare_output_folder(dir);
+  auto lock = std::make_unique<FolderLock>(dir);
+  refuse_folders_under_file_names(dir, files, "the " + what.substr(what.find(' ') + 1));
+  const bool older = fs::is_regular_file(fs::symlink_status(dir / "summary.json", ec));
+  ec.clear();
+  fs::remove(dir / "summary.json", ec);
+  if (ec)
+    throw std::runtime_error((dir / "summary.json").string() + ": cannot remove the older summary (" + ec.message() + ")");
+  if (older)
+    for (const std::string& drawn : pictures)  // the pictures, not a folder of the user's under their name
+      if (fs::is_regular_file(fs::symlink_status(dir / drawn, ec))) fs::remove(dir / drawn, ec);
+  return lock;
 }
 
 void prepare_output_folder(const std::filesystem::path& dir) {

@@ -126,32 +126,10 @@ nlohmann::json wear_run_json(const WearRun& run, const Config& config, const Wea
   return j;
 }
 
-WearFiles::WearFiles(const std::filesystem::path& dir) : dir_(dir) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  for (const auto& [file, what] : {std::pair{"sweep.csv", "a sweep"}, std::pair{"history.csv", "a run"},
-                                   std::pair{"workpiece.csv", "a brush"}, std::pair{"report.md", "a reproduction"}})
-    if (fs::exists(dir / file, ec))
-      throw std::runtime_error(dir.string() + ": holds " + what + " (" + file + "), not a wear run; give another folder");
-  prepare_output_folder(dir);
-  lock_ = std::make_unique<FolderLock>(dir);
-  try {
-    refuse_folders_under_file_names(dir, {std::begin(kFiles), std::end(kFiles)}, "the wear run");
-  } catch (const std::runtime_error&) {
-    lock_.reset();
-    throw;
-  }
-  const bool older = fs::is_regular_file(fs::symlink_status(dir / "summary.json", ec));
-  ec.clear();
-  fs::remove(dir / "summary.json", ec);
-  if (ec) {
-    lock_.reset();
-    throw std::runtime_error((dir / "summary.json").string() + ": cannot remove the older summary (" + ec.message() + ")");
-  }
-  if (older)
-    for (const char* drawn : kPictures)
-      if (fs::is_regular_file(fs::symlink_status(dir / drawn, ec))) fs::remove(dir / drawn, ec);
-}
+WearFiles::WearFiles(const std::filesystem::path& dir)
+    : dir_(dir),
+      lock_(open_study_folder(dir, "a wear run", {std::begin(kFiles), std::end(kFiles)},
+                              {std::begin(kPictures), std::end(kPictures)})) {}
 
 WearFiles::~WearFiles() = default;
 
