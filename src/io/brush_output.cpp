@@ -1,6 +1,7 @@
 #include "rotbeam/brush_output.hpp"
 
 #include "rotbeam/atomic_file.hpp"
+#include "rotbeam/detail/csv.hpp"
 #include "rotbeam/folder_lock.hpp"
 #include "rotbeam/ledger_output.hpp"
 #include "rotbeam/output_columns.hpp"
@@ -14,15 +15,7 @@ namespace rotbeam {
 
 namespace {
 
-// The shortest decimal that reads back to the same double; "nan" for NaN.
-void put(std::string& out, double v) {
-  if (std::isnan(v)) {
-    out += "nan";
-    return;
-  }
-  char buf[40];
-  out.append(buf, std::to_chars(buf, buf + sizeof buf, v).ptr);
-}
+void put(std::string& out, double v) { detail::append_number(out, v); }
 
 nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 

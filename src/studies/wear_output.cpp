@@ -1,6 +1,7 @@
 #include "rotbeam/wear_output.hpp"
 
 #include "rotbeam/atomic_file.hpp"
+#include "rotbeam/detail/csv.hpp"
 #include "rotbeam/output_columns.hpp"
 #include "rotbeam/pass_output.hpp"
 #include "rotbeam/version.hpp"
@@ -16,14 +17,7 @@ namespace {
 constexpr const char* kFiles[] = {"wear_history.csv", "wear_depth.csv", "summary.json"};
 constexpr const char* kPictures[] = {"wear.png"};
 
-void put(std::string& out, double v) {
-  char buf[40];
-  if (std::isnan(v)) {
-    out += "nan";
-    return;
-  }
-  out.append(buf, std::to_chars(buf, buf + sizeof buf, v).ptr);
-}
+void put(std::string& out, double v) { detail::append_number(out, v); }
 
 void put_row(std::string& out, std::initializer_list<double> values) {
   bool first = true;
