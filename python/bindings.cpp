@@ -176,7 +176,8 @@ py::tuple brush(const std::optional<std::string>& path, const Values& overrides,
   const double omega = rad_per_s_from_rpm(config.beam.speed_rpm);
   return py::make_tuple(from_json(brush_summary_json(result, config)), py::bytes(workpiece_csv(result, omega)),
                         py::bytes(profile_csv(result, omega)), py::bytes(filaments_csv(result)),
-                        py::bytes(wear_profile_csv(brush_wear_report(result, config), config.wear)));
+                        py::bytes(wear_profile_csv(brush_wear_report(result, config), config.wear)),
+                        py::bytes(representatives_csv(result)));
 }
 
 py::tuple wear(const std::optional<std::string>& path, const Values& overrides, double hours, int steps) {
@@ -450,8 +451,8 @@ PYBIND11_MODULE(_core, m) {
         "A whole pass: (summary dict, history dict of arrays, list of event dicts, revolutions.csv's text, "
         "force_bins.csv's text, wear_profile.csv's text).");
   m.def("brush", &brush, py::arg("path"), py::arg("overrides"), py::arg("threads"),
-        "A brush at its steady state: (summary dict, workpiece.csv's, profile.csv's, filaments.csv's and "
-        "wear_profile.csv's text).");
+        "A brush at its steady state: (summary dict, workpiece.csv's, profile.csv's, filaments.csv's, "
+        "wear_profile.csv's and representatives.csv's text).");
   m.def("wear", &wear, py::arg("path"), py::arg("overrides"), py::arg("hours"), py::arg("steps"),
         "Wear over hours of operation: (summary dict, wear_history.csv's and wear_depth.csv's text).");
   m.def("impact", &impact, py::arg("path"), py::arg("overrides"),

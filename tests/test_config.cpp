@@ -172,13 +172,14 @@ TEST(Config, ResolvedJsonRoundTripsThroughToml) {
   // 33, impact.friction, beam.damping_ratio, simulation.{revolutions, until_steady, steady_tolerance,
   // steady_method, multipliers}, output.{history_revolutions, near_surface_interval_s,
   // near_surface_gap_m, bin_deg}, simulation.{integrating_factor, end_when_clear}, brush.{filaments,
-  // rows, row_phase_deg, phase_jitter_deg, length_scatter, diameter_scatter, seed}, surface.{shape,
+  // rows, row_phase_deg, phase_jitter_deg, length_scatter, diameter_scatter, seed, method,
+  // population_tolerance, population_max_runs}, surface.{shape,
   // radius_m, speed_rpm, clearance_m, lobes, lobe_amplitude_m, lobe_law}, beam.theory,
   // model.{centrifugal, coriolis}, contact.{model, tip_radius_m, friction_regularization_m_s,
   // stiffness_factor}, surface.{youngs_modulus_pa, poisson}, beam.poisson, beam.axial,
   // wear.{surface_coefficient, surface_hardness_pa, filament_coefficient, filament_hardness_pa,
   // heat_to_filament, track_width_m, profile_bins}
-  EXPECT_EQ(config_keys().size(), 78u);
+  EXPECT_EQ(config_keys().size(), 81u);
   // The theory, the axial model and the switches appear where they differ from the thesis's, and read back.
   EXPECT_FALSE(j["beam"].contains("theory"));
   EXPECT_FALSE(j["beam"].contains("axial"));

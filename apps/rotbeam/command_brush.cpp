@@ -34,7 +34,8 @@ void print_summary(const Config& config, const BrushResult& r, const std::string
   const BrushSummary& s = r.summary;
   const BrushSettings& b = *config.brush;
   std::cout << "Brush: " << counted(s.filaments, "filament") << " (" << b.filaments << " around × "
-            << counted(b.rows, "row") << ", " << s.distinct_filaments << " distinct), " << number_text(config.beam.speed_rpm) << " rpm, "
+            << counted(b.rows, "row") << ", " << s.distinct_filaments
+            << (s.population ? " representatives run" : " distinct") << "), " << number_text(config.beam.speed_rpm) << " rpm, "
             << surface_text(config) << ", μ = " << config.contact.friction.mu << ", "
             << modes_text(config) << "\n";
   std::cout << "  filaments             " << s.steady << " steady, " << s.not_steady << " not steady, " << s.failed
@@ -68,10 +69,17 @@ void print_summary(const Config& config, const BrushResult& r, const std::string
   std::cout << "  dimensionless         p = " << s.depth_ratio << ", Ω/ω₁ = " << s.speed_ratio;
   if (std::isfinite(s.force_ratio)) std::cout << ", F/(3EI·pL/L³) per filament = " << s.force_ratio;
   std::cout << "\n";
+  if (s.population) {
+    const PopulationEstimate& p = *s.population;
+    std::cout << "  population            " << s.distinct_filaments << " representatives (" << p.lengths << " lengths × "
+              << p.diameters << " diameters), estimated error: mean normal force " << number_text(p.normal_force_error)
+              << ", hub torque " << number_text(p.hub_torque_error) << " (tolerance " << number_text(p.tolerance)
+              << (p.converged ? ", met" : ", not met") << ")\n";
+  }
   std::cout << "  wall time             " << fixed(s.wall_time_s, 2) << " s\n";
   for (const std::string& w : s.warnings) std::cout << "  warning: " << w << "\n";
   std::cout << "  wrote " << (std::filesystem::path(dir) / "workpiece.csv").string()
-            << ", profile.csv, filaments.csv, wear_profile.csv, summary.json\n";
+            << ", profile.csv, filaments.csv, representatives.csv, wear_profile.csv, summary.json\n";
 }
 
 int run_brush_command(const BrushCommandOptions& o) {

@@ -21,6 +21,10 @@ std::string workpiece_csv(const BrushResult& result, double omega);
 std::string profile_csv(const BrushResult& result, double omega);
 /// filaments.csv: one row per filament: its place, parameters and steady-state means.
 std::string filaments_csv(const BrushResult& result);
+
+/// representatives.csv: the filaments the brush ran (its distinct filaments, or the population's
+/// representatives), what each stands for and its steady state's means.
+std::string representatives_csv(const BrushResult& result);
 /// summary.json of a brush: "kind": "brush", the metrics, the filaments' counts, warnings, the
 /// failure (or null) and the resolved configuration.
 nlohmann::json brush_summary_json(const BrushResult& result, const Config& config);

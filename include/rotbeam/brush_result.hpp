@@ -3,6 +3,7 @@
 // the brush's files (brush_output.hpp) write them.
 #pragma once
 
+#include "rotbeam/brush_settings.hpp"
 #include "rotbeam/wear_record.hpp"
 #include "rotbeam/force_record.hpp"
 #include "rotbeam/ledger.hpp"
@@ -25,7 +26,7 @@ struct BrushFilament {
   // Its own surface.depth_fraction: the surface stays where the nominal filament's depth puts it, so
   // p_k = (L_k − L + pL)/L_k; ≤ 0 when the filament is too short to reach it.
   double depth_fraction = 0;
-  int group = 0;            // the distinct filament (length, diameter) it is a copy of
+  int group = 0;            // the distinct filament (length, diameter) it is a copy of; "population": the nearest representative
 };
 
 /// One distinct filament at its steady state: per-revolution means over its orbit's m revolutions
@@ -56,8 +57,38 @@ struct FilamentSteadyState {
   std::string error;  // a run that ended without a failure and without a complete revolution, in words
 };
 
+/// A filament that was run for the brush: a distinct filament (brush.method = "filaments"), or a
+/// representative of the population, with the share of the brush it stands for.
+struct RunFilament {
+  double length_m = 0, diameter_m = 0, depth_fraction = 0;
+  double weight = 0;  // filaments it stands for: its copies, or the sum of its interpolation weights
+  int nearest = 0;    // filaments of which it is the nearest (its copies for "filaments")
+};
+
+/// One filament's per-revolution values interpolated from the representatives (brush.method =
+/// "population"; docs/brush.md), as filaments.csv gives them.
+struct FilamentEstimate {
+  double mean_normal_force_n = 0, mean_tangential_force_n = 0, mean_hub_torque_n_m = 0, mean_hub_power_w = 0;
+  double impacts_per_revolution = 0, contact_time_s = 0, peak_normal_force_n = 0, max_tip_deflection_ratio = 0;
+  double ledger_residual_max_j = 0;
+};
+
+/// How well the population's interpolation resolves the brush (brush.method = "population").
+struct PopulationEstimate {
+  double tolerance = 0;   // brush.population_tolerance
+  bool converged = false; // the estimated errors are within the tolerance
+  int rounds = 0;         // refinement rounds
+  int lengths = 0, diameters = 0;  // nodes of the grid in each direction (virtual zero-reach nodes included)
+  // Estimated errors of the brush's sums relative to the filament-by-filament route over the same
+  // filaments: the interpolation's change at its last refinement, summed in magnitude over the
+  // cells; relative to the sum itself.
+  double normal_force_error = 0, tangential_force_error = 0, hub_torque_error = 0;
+};
+
 /// What the brush puts on the workpiece, and the groups that present it (docs/brush.md).
 struct BrushSummary {
+  BrushMethod method = BrushMethod::filaments;
+  std::optional<PopulationEstimate> population;  // brush.method = "population"
   int filaments = 0, distinct_filaments = 0, reaching = 0, steady = 0, not_steady = 0, failed = 0;
   double revolution_period_s = 0;
   double mean_normal_force_n = 0, mean_tangential_force_n = 0;   // over the revolution [N]
@@ -94,7 +125,9 @@ struct BrushSummary {
 
 struct BrushResult {
   std::vector<BrushFilament> filaments;
-  std::vector<FilamentSteadyState> distinct;  // by group
+  std::vector<FilamentSteadyState> distinct;  // the filaments run: by group, or the representatives
+  std::vector<RunFilament> run;               // what each of `distinct` is and stands for
+  std::vector<FilamentEstimate> estimates;    // "population": per filament, interpolated (else empty)
   std::vector<ForceBin> workpiece;            // every bin of one revolution of the reference hub angle
   // The force profile across the contact zone: the filaments' deliveries at their own relative angle
   // (0° where a filament points at the surface's deepest point), summed and divided by the number of

@@ -7,6 +7,10 @@
 
 namespace rotbeam {
 
+/// How a brush's filaments are computed (docs/brush.md): each distinct filament run on its own, or
+/// the brush as a population, its sums interpolated from representative filaments.
+enum class BrushMethod { filaments, population };
+
 struct BrushSettings {
   int filaments = 1;              // brush.filaments: around the circumference, equally spaced in phase
   int rows = 1;                   // brush.rows: axial rows (copies in this planar model unless offset)
@@ -15,6 +19,9 @@ struct BrushSettings {
   double length_scatter = 0;      // brush.length_scatter: relative standard deviation of L
   double diameter_scatter = 0;    // brush.diameter_scatter: relative standard deviation of D
   std::uint64_t seed = 1;         // brush.seed: the scatter's random stream
+  BrushMethod method = BrushMethod::filaments;  // brush.method
+  double population_tolerance = 2e-3;  // brush.population_tolerance: relative error the population aims at
+  int population_max_runs = 96;        // brush.population_max_runs: representative filaments run at most
 };
 
 }  // namespace rotbeam

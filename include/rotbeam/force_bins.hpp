@@ -27,8 +27,12 @@ public:
                   double hub_angular_n_m_s = 0);
   /// A delivery moved by −shift_deg in angle (a filament at phase shift_deg ahead of the reference
   /// reaches angle α when the reference is at α − shift) and scaled by `weight` (1/m for one of the m
-  /// revolutions of a period-m orbit).
+  /// revolutions of a period-m orbit); an impact counts `weight` impacts (a bin's count is rounded to
+  /// the nearest whole number: per revolution for a period-m orbit).
   void add(const MomentumDelivery& d, double shift_deg = 0, double weight = 1);
+  /// `count` impacts at relative angle `angle_deg`, their momentum given elsewhere (a population's
+  /// impacts: its filaments' interpolation weights).
+  void add_impacts(double angle_deg, double count);
   /// Adds the bins of `other` (same bin_deg and ω) bin by bin.
   void merge(const ForceBins& other);
 
@@ -49,7 +53,7 @@ private:
   ForceBin bin(int k) const;
 
   std::vector<double> normal_, tangential_, hub_;
-  std::vector<int> impacts_;
+  std::vector<double> impacts_;  // weighted counts (ForceBin::impacts rounds them)
   std::vector<char> touched_;
 };
 

@@ -311,23 +311,28 @@ class BrushResult:
     summary.json), `workpiece` (numpy arrays by the columns of workpiece.csv: the force, torque and
     power on the workpiece in hub-angle bins over one revolution), `profile` (the same columns for the
     mean filament against its own angle across the contact zone, profile.csv) and `filaments` (numpy
-    arrays by the columns of filaments.csv, one entry per filament) and `wear_profile` (wear_profile.csv:
-    the wear all the filaments leave along the surface per revolution, docs/wear.md). The tables are dicts of
-    equal-length arrays: pandas.DataFrame(r.workpiece) makes a data frame of one."""
+    arrays by the columns of filaments.csv, one entry per filament), `wear_profile` (wear_profile.csv:
+    the wear all the filaments leave along the surface per revolution, docs/wear.md) and
+    `representatives` (representatives.csv: the filaments run, the distinct ones or a population's
+    representatives, with what each stands for). The tables are dicts of equal-length arrays:
+    pandas.DataFrame(r.workpiece) makes a data frame of one."""
 
     summary: dict[str, Any]
     workpiece: dict[str, "numpy.ndarray"]
     profile: dict[str, "numpy.ndarray"]
     filaments: dict[str, "numpy.ndarray"]
     wear_profile: dict[str, "numpy.ndarray"]
+    representatives: dict[str, "numpy.ndarray"]
 
     def __init__(self, summary: dict[str, Any], workpiece: dict[str, "numpy.ndarray"], profile: dict[str, "numpy.ndarray"],
-                 filaments: dict[str, "numpy.ndarray"], wear_profile: dict[str, "numpy.ndarray"] | None = None):
+                 filaments: dict[str, "numpy.ndarray"], wear_profile: dict[str, "numpy.ndarray"] | None = None,
+                 representatives: dict[str, "numpy.ndarray"] | None = None):
         self.summary = summary
         self.workpiece = workpiece
         self.profile = profile
         self.filaments = filaments
         self.wear_profile = wear_profile if wear_profile is not None else {}
+        self.representatives = representatives if representatives is not None else {}
 
     @property
     def failure(self) -> dict[str, Any] | None:
@@ -336,7 +341,8 @@ class BrushResult:
 
     def __repr__(self):
         s = self.summary
-        return (f"<rotbeam.BrushResult {s['filaments']} filaments ({s['distinct_filaments']} distinct): mean force "
+        run = "representatives" if s.get("method") == "population" else "distinct"
+        return (f"<rotbeam.BrushResult {s['filaments']} filaments ({s['distinct_filaments']} {run}): mean force "
                 f"{s['mean_normal_force_n']:.6g} N normal, {s['mean_tangential_force_n']:.6g} N tangential, "
                 f"mean power {s['mean_hub_power_w']:.6g} W"
                 f"{', failure: ' + s['failure']['kind'] if s.get('failure') else ''}>")
@@ -344,16 +350,18 @@ class BrushResult:
 
 def brush(config: ConfigLike = None, overrides: Overrides = None, jobs: int = 0) -> BrushResult:
     """A brush (`rotbeam brush`, docs/brush.md): every distinct filament run to its periodic steady
-    state on `jobs` threads (0: all cores), and the sum on the workpiece. The configuration needs the
+    state on `jobs` threads (0: all cores), or with overrides={"brush.method": "population"} a few
+    representatives whose interpolation gives the sums, and the sum on the workpiece. The configuration needs the
     [brush] keys, e.g. overrides={"brush.filaments": 24, "beam.damping_ratio": 0.05}; config and
     overrides as for run(). Returns a BrushResult (.summary, .workpiece, .profile, .filaments as
     numpy arrays); a filament's numerical failure is reported in BrushResult.failure (the sums hold
     the others). Ctrl-C stops the filaments under way and raises KeyboardInterrupt."""
     jobs = _jobs(jobs)
     path, sets = _arguments(config, overrides)
-    summary, workpiece, profile, filaments, wear = _core.brush(path, sets, jobs)
+    summary, workpiece, profile, filaments, wear, representatives = _core.brush(path, sets, jobs)
     return BrushResult(summary, _table_arrays(workpiece, "workpiece.csv"), _table_arrays(profile, "profile.csv"),
-                       _table_arrays(filaments, "filaments.csv"), _table_arrays(wear, "wear_profile.csv"))
+                       _table_arrays(filaments, "filaments.csv"), _table_arrays(wear, "wear_profile.csv"),
+                       _table_arrays(representatives, "representatives.csv"))
 
 
 class WearResult:

@@ -34,7 +34,8 @@ _DIMENSIONLESS_KEYS = {"beam.modes", "beam.damping_ratio", "surface.depth_fracti
                        "simulation.steady_tolerance", "simulation.rtol", "simulation.max_impacts",
                        "simulation.deflection_warning_ratio", "simulation.corrector_max_iterations",
                        "output.history_revolutions", "brush.filaments", "brush.rows", "brush.length_scatter",
-                       "brush.diameter_scatter", "brush.seed"}
+                       "brush.diameter_scatter", "brush.seed", "brush.population_tolerance",
+                       "brush.population_max_runs"}
 
 # What a resumed case's message carries in sweep.csv that the result does not depend on.
 _RESUMED_NOTE = " (computed by an earlier run)"

@@ -35,11 +35,19 @@ def read_brush(folder):
     return (summary, *tables)
 
 
+def read_representatives(folder, summary):
+    """representatives.csv of a brush folder, or None where the summary lists none (older folders)."""
+    if "representatives.csv" not in summary.get("files", {}):
+        return None
+    return read_csv(Path(folder) / "representatives.csv", error=DamagedBrush)
+
+
 def _title(summary):
     c = summary["config"]
     b = c["brush"]
+    run = "representatives run" if summary.get("method") == "population" else "distinct"
     return (f"Brush of {summary['filaments']} filaments ({b['filaments']} around × {b['rows']} rows, "
-            f"{summary['distinct_filaments']} distinct), {c['hub']['speed_rpm']:g} rpm, {surface_words(c)}, "
+            f"{summary['distinct_filaments']} {run}), {c['hub']['speed_rpm']:g} rpm, {surface_words(c)}, "
             f"μ = {c['surface']['friction']:g}")
 
 
@@ -100,10 +108,11 @@ def profile_figure(summary, profile):
     return fig
 
 
-def filaments_figure(summary, filaments):
+def filaments_figure(summary, filaments, representatives=None):
     """brush_filaments.png: each filament's mean normal force and its largest deflection |y_t|/L
     against its length (and diameter where they scatter): what makes filaments differ. Their phase
-    cannot (every filament meets the same surface), so it is not drawn."""
+    cannot (every filament meets the same surface), so it is not drawn. For a population the
+    filaments' values are interpolated, and the representatives that were run are drawn over them."""
     fig, (ax, ax2) = plt.subplots(1, 2, figsize=(12, 5))
     status = filaments["status"]
     groups = [("steady", "C0", "o"), ("not_steady", "C1", "s"), ("clear", "0.6", "x"), ("failed", "C3", "^"),
@@ -119,6 +128,11 @@ def filaments_figure(summary, filaments):
         for a, column in ((ax, "mean_normal_force_n"), (ax2, "max_tip_deflection_ratio")):
             a.scatter(filaments["length_m"][sel] * 1e3, filaments[column][sel], s=size ** 2, marker=marker,
                       color=color, label=label, linewidths=1)
+    if summary.get("method") == "population" and representatives is not None:
+        ran = representatives["status"] != "clear"
+        for a, column in ((ax, "mean_normal_force_n"), (ax2, "max_tip_deflection_ratio")):
+            a.scatter(representatives["length_m"][ran] * 1e3, representatives[column][ran], s=40, marker="+",
+                      color="k", label=f"representative run ({ran.sum()})", linewidths=1.2, zorder=3)
     limit = summary.get("config", {}).get("simulation", {}).get("deflection_warning_ratio", 0.1)
     ax2.axhline(limit, color="C3", lw=0.8, ls="--", label=f"warning ratio {limit:g} (docs/model.md §10)")
     ax.set_ylabel("mean normal force over a revolution (N)")
@@ -127,7 +141,9 @@ def filaments_figure(summary, filaments):
         a.set_xlabel("filament length (mm)" + (" — marker size: diameter" if by_diameter else ""))
         a.grid(alpha=0.3)
         a.legend(fontsize=8)
-    fig.suptitle(_title(summary) + "\neach filament at its steady state (clear: too short to reach the surface); "
+    what = ("each filament interpolated from the representatives run (brush.method = \"population\")"
+            if summary.get("method") == "population" else "each filament at its steady state")
+    fig.suptitle(_title(summary) + f"\n{what} (clear: too short to reach the surface);\n"
                  "filaments differ by length and diameter, not by their phase", fontsize=10)
     fig.tight_layout()
     return fig
@@ -136,9 +152,10 @@ def filaments_figure(summary, filaments):
 def brush_figures(folder):
     """[(name, figure)] of a brush folder, every file read and checked before any is drawn."""
     summary, workpiece, profile, filaments = read_brush(folder)
+    representatives = read_representatives(folder, summary)
     return draw_all((("brush_force", lambda: force_figure(summary, workpiece)),
                      ("brush_profile", lambda: profile_figure(summary, profile)),
-                     ("brush_filaments", lambda: filaments_figure(summary, filaments))))
+                     ("brush_filaments", lambda: filaments_figure(summary, filaments, representatives))))
 
 
 # brush_map.png of a sweep over brushes (rotbeam.sweep_plots.metrics_figure draws it as the sweep's

@@ -19,7 +19,8 @@ void put(std::string& out, double v) { detail::append_number(out, v); }
 
 nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
-constexpr const char* kFiles[] = {"workpiece.csv", "profile.csv", "filaments.csv", "wear_profile.csv", "summary.json"};
+constexpr const char* kFiles[] = {"workpiece.csv", "profile.csv", "filaments.csv", "representatives.csv", "wear_profile.csv",
+                                  "summary.json"};
 constexpr const char* kPictures[] = {"brush_force.png", "brush_profile.png", "brush_filaments.png"};
 
 }  // namespace
@@ -45,8 +46,22 @@ std::string workpiece_csv(const BrushResult& result, double omega) { return bins
 
 std::string profile_csv(const BrushResult& result, double omega) { return bins_csv(result.profile, omega); }
 
+namespace {
+
+// How a filament run ended, in filaments.csv's and representatives.csv's words.
+const char* run_status(const FilamentSteadyState& d) {
+  if (!d.reaches) return "clear";
+  if (d.failure && d.failure->kind == FailureKind::interrupted) return "interrupted";
+  if (d.ran) return d.steady ? "steady" : "not_steady";
+  if (d.failure) return "failed";
+  return d.error.empty() ? "interrupted" : "error";  // never started: the stop came first
+}
+
+}  // namespace
+
 std::string filaments_csv(const BrushResult& result) {
   std::string out = csv_header(output_file("filaments.csv"), 0) + "\n";
+  const bool estimated = !result.estimates.empty();
   for (const BrushFilament& f : result.filaments) {
     const FilamentSteadyState& d = result.distinct[f.group];
     out += std::to_string(f.index + 1) + ',' + std::to_string(f.row + 1) + ',' + std::to_string(f.position + 1) + ',';
@@ -54,18 +69,46 @@ std::string filaments_csv(const BrushResult& result) {
       put(out, v);
       out += ',';
     }
-    out += std::to_string(f.group + 1) + ',' + (d.reaches ? "true" : "false") + ',';
-    const char* status = !d.reaches                      ? "clear"
-                         : d.ran                         ? (d.steady ? "steady" : "not_steady")
-                         : d.failure                     ? "failed"
-                         : d.error.empty()               ? "interrupted"  // never started: the stop came first
-                                                         : "error";
-    if (d.failure && d.failure->kind == FailureKind::interrupted) status = "interrupted";
-    out += status;
+    const bool reaches = f.depth_fraction > 0.0;
+    out += std::to_string(f.group + 1) + ',' + (reaches ? "true" : "false") + ',';
+    out += run_status(d);
     out += ',' + std::to_string(d.period_revolutions) + ',' + std::to_string(d.revolutions_run);
+    // The population's values are the filament's own, interpolated; the rest are its nearest
+    // representative's.
+    const FilamentEstimate e = estimated ? result.estimates[f.index] : FilamentEstimate{};
+    const bool own = estimated && reaches;
+    for (double v : {own ? e.mean_normal_force_n : estimated ? 0.0 : d.mean_normal_force_n,
+                     own ? e.mean_tangential_force_n : estimated ? 0.0 : d.mean_tangential_force_n,
+                     own ? e.mean_hub_torque_n_m : estimated ? 0.0 : d.mean_hub_torque_n_m,
+                     own ? e.mean_hub_power_w : estimated ? 0.0 : d.mean_hub_power_w,
+                     own ? e.impacts_per_revolution : estimated ? 0.0 : d.impacts_per_revolution,
+                     own ? e.contact_time_s : estimated ? 0.0 : d.contact_time_s,
+                     own ? e.peak_normal_force_n : estimated ? 0.0 : d.peak_normal_force_n,
+                     own ? e.max_tip_deflection_ratio : estimated ? 0.0 : d.max_tip_deflection_ratio,
+                     d.first_contact_deg, d.last_contact_deg,
+                     own ? e.ledger_residual_max_j : estimated ? 0.0 : d.ledger_residual_max_j}) {
+      out += ',';
+      put(out, v);
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+std::string representatives_csv(const BrushResult& result) {
+  std::string out = csv_header(output_file("representatives.csv"), 0) + "\n";
+  for (std::size_t g = 0; g < result.distinct.size(); ++g) {
+    const FilamentSteadyState& d = result.distinct[g];
+    const RunFilament& r = result.run[g];
+    out += std::to_string(g + 1) + ',';
+    for (double v : {r.length_m, r.diameter_m, r.depth_fraction, r.weight}) {
+      put(out, v);
+      out += ',';
+    }
+    out += std::to_string(r.nearest) + ',' + run_status(d) + ',' + std::to_string(d.period_revolutions) + ',' +
+           std::to_string(d.revolutions_run);
     for (double v : {d.mean_normal_force_n, d.mean_tangential_force_n, d.mean_hub_torque_n_m, d.mean_hub_power_w,
-                     d.impacts_per_revolution, d.contact_time_s, d.peak_normal_force_n, d.max_tip_deflection_ratio,
-                     d.first_contact_deg, d.last_contact_deg, d.ledger_residual_max_j}) {
+                     d.impacts_per_revolution, d.contact_time_s, d.peak_normal_force_n, d.max_tip_deflection_ratio}) {
       out += ',';
       put(out, v);
     }
@@ -92,6 +135,24 @@ nlohmann::json brush_summary_json(const BrushResult& result, const Config& confi
   const BrushSummary& s = result.summary;
   nlohmann::json j;
   j["kind"] = "brush";
+  j["method"] = s.method == BrushMethod::population ? "population" : "filaments";
+  if (s.population) {
+    const PopulationEstimate& p = *s.population;
+    j["population"] = {{"tolerance", p.tolerance},
+                       {"converged", p.converged},
+                       {"rounds", p.rounds},
+                       {"representatives", s.distinct_filaments},
+                       {"length_nodes", p.lengths},
+                       {"diameter_nodes", p.diameters},
+                       {"estimated_error",
+                        {{"mean_normal_force", p.normal_force_error},
+                         {"mean_tangential_force", p.tangential_force_error},
+                         {"mean_hub_torque", p.hub_torque_error}}},
+                       {"note", "estimated errors are relative to the sums, against the filament-by-filament "
+                                "route over the same filaments (docs/brush.md)"}};
+  } else {
+    j["population"] = nullptr;
+  }
   j["wear"] = wear_json(brush_wear_report(result, config));
   j["filaments"] = s.filaments;
   j["distinct_filaments"] = s.distinct_filaments;
@@ -161,7 +222,9 @@ void BrushFiles::commit(const BrushResult& result, const Config& config) {
   const std::string workpiece = workpiece_csv(result, omega);
   const std::string profile = profile_csv(result, omega);
   const std::string filaments = filaments_csv(result);
+  const std::string representatives = representatives_csv(result);
   write_file_atomically(dir_ / "workpiece.csv", workpiece);
+  write_file_atomically(dir_ / "representatives.csv", representatives);
   write_file_atomically(dir_ / "profile.csv", profile);
   write_file_atomically(dir_ / "filaments.csv", filaments);
   const std::string wear = wear_profile_csv(brush_wear_report(result, config), config.wear);
@@ -170,6 +233,7 @@ void BrushFiles::commit(const BrushResult& result, const Config& config) {
   j["files"] = {{"workpiece.csv", {{"bytes", workpiece.size()}}},
                 {"profile.csv", {{"bytes", profile.size()}}},
                 {"filaments.csv", {{"bytes", filaments.size()}}},
+                {"representatives.csv", {{"bytes", representatives.size()}}},
                 {"wear_profile.csv", {{"bytes", wear.size()}}}};
   write_file_atomically(dir_ / "summary.json", j.dump(2) + "\n");
 }

@@ -353,6 +353,15 @@ std::vector<Key> make_table() {
   const std::string whole = "must be a whole number in 0..18446744073709551615";
   t.push_back(plain("brush.seed", "", Check{{integers(0, std::ldexp(1.0, 64))}, whole, whole, ""}, "a brush: the scatter's random stream",
                     [](auto& c) -> auto& { return brush_of(c).seed; }, brush));
+  t.push_back(named<BrushMethod>("brush.method", {{"filaments", BrushMethod::filaments}, {"population", BrushMethod::population}},
+                    "a brush: run every distinct filament, or interpolate the brush's sums from representative filaments",
+                    [](auto& c) -> auto& { return brush_of(c).method; }, brush));
+  t.push_back(plain("brush.population_tolerance", "", one(inside(0, 1)),
+                    "a brush by population: the relative error of the mean force and torque it refines to",
+                    [](auto& c) -> auto& { return brush_of(c).population_tolerance; }, brush));
+  t.push_back(plain("brush.population_max_runs", "", one(integers(4, 100000)),
+                    "a brush by population: the most representative filaments it runs",
+                    [](auto& c) -> auto& { return brush_of(c).population_max_runs; }, brush));
   t.push_back(plain("compat.thesis_forces", "", one(boolean()),
                     "report the normal force as |lambda| |grad C| and friction as mu |lambda| |grad C|, as the thesis did",
                     [](auto& c) -> auto& { return c.contact.friction.thesis_forces; }));

@@ -170,7 +170,7 @@ std::vector<OutputFile> make_files() {
         number("length_m", "m", "its length"),
         number("diameter_m", "m", "its diameter"),
         number("depth_fraction", "1", "its own depth over its length"),
-        integer("distinct", "the distinct filament it is a copy of, 1 …"),
+        integer("distinct", "the distinct filament it is a copy of (by population: its nearest representative), 1 …"),
         {"reaches", "", ColumnKind::boolean, "its tip reaches the surface", {}},
         {"status", "", ColumnKind::word, "how its run ended", filament_status_words()},
         integer("period_revolutions", "its orbit's period"),
@@ -186,6 +186,25 @@ std::vector<OutputFile> make_files() {
         number("first_contact_deg", "degree", "relative angle of its first delivery of momentum"),
         number("last_contact_deg", "degree", "relative angle of its last"),
         number("ledger_residual_j", "J", "the largest residual of its ledger per revolution")}});
+  files.push_back(
+      {"representatives.csv",
+       {integer("representative", "the filament run, 1 … (filaments.csv's distinct)"),
+        number("length_m", "m", "its length"),
+        number("diameter_m", "m", "its diameter"),
+        number("depth_fraction", "1", "its own depth over its length"),
+        number("weight", "1", "the filaments it stands for: its copies, or by population the sum of their interpolation weights"),
+        integer("nearest", "the filaments of which it is the nearest (its copies)"),
+        {"status", "", ColumnKind::word, "how its run ended", filament_status_words()},
+        integer("period_revolutions", "its orbit's period"),
+        integer("revolutions_run", "revolutions run"),
+        number("mean_normal_force_n", "N", "normal impulse per revolution over the period"),
+        number("mean_tangential_force_n", "N", "tangential impulse per revolution over the period"),
+        number("mean_hub_torque_n_m", "N m", "hub work per revolution over 2π"),
+        number("mean_hub_power_w", "W", "hub work per revolution over the period"),
+        number("impacts_per_revolution", "1", "impacts per revolution"),
+        number("contact_time_s", "s", "contact time per revolution"),
+        number("peak_normal_force_n", "N", "largest normal force over the orbit"),
+        number("max_tip_deflection_ratio", "1", "largest |y_t|/L over the orbit")}});
   return files;
 }
 

@@ -12,7 +12,7 @@ ForceBins::ForceBins(double bin_deg, double omega) : bin_deg_(bin_deg), omega_(o
   normal_.assign(count_, 0.0);
   tangential_.assign(count_, 0.0);
   hub_.assign(count_, 0.0);
-  impacts_.assign(count_, 0);
+  impacts_.assign(count_, 0.0);
   touched_.assign(count_, 0);
 }
 
@@ -20,7 +20,7 @@ void ForceBins::clear() {
   std::fill(normal_.begin(), normal_.end(), 0.0);
   std::fill(tangential_.begin(), tangential_.end(), 0.0);
   std::fill(hub_.begin(), hub_.end(), 0.0);
-  std::fill(impacts_.begin(), impacts_.end(), 0);
+  std::fill(impacts_.begin(), impacts_.end(), 0.0);
   std::fill(touched_.begin(), touched_.end(), 0);
 }
 
@@ -40,6 +40,13 @@ void ForceBins::add_impulse(double angle_deg, double normal_n_s, double tangenti
   normal_[k] += normal_n_s;
   tangential_[k] += tangential_n_s;
   ++impacts_[k];
+  touched_[k] = 1;
+}
+
+void ForceBins::add_impacts(double angle_deg, double count) {
+  if (!(count > 0.0)) return;
+  const int k = index(angle_deg);
+  impacts_[k] += count;
   touched_[k] = 1;
 }
 
@@ -85,7 +92,7 @@ void ForceBins::add(const MomentumDelivery& d, double shift_deg, double weight) 
     normal_[k] += weight * d.normal_n_s;
     tangential_[k] += weight * d.tangential_n_s;
     hub_[k] += weight * d.hub_angular_impulse_n_m_s;
-    ++impacts_[k];
+    impacts_[k] += weight;
     touched_[k] = 1;
     return;
   }
@@ -113,7 +120,7 @@ ForceBin ForceBins::bin(int k) const {
   b.tangential_impulse_n_s = tangential_[k];
   b.mean_normal_force_n = normal_[k] / duration;
   b.mean_tangential_force_n = tangential_[k] / duration;
-  b.impacts = impacts_[k];
+  b.impacts = static_cast<int>(std::lround(impacts_[k]));
   b.hub_angular_impulse_n_m_s = hub_[k];
   b.mean_hub_torque_n_m = hub_[k] / duration;
   return b;

@@ -1,5 +1,7 @@
 #include "rotbeam/brush.hpp"
 
+#include "brush_filament.hpp"
+
 #include "rotbeam/case.hpp"
 #include "rotbeam/force_bins.hpp"
 #include "rotbeam/job_runner.hpp"
@@ -33,137 +35,6 @@ double truncated_normal(Engine& engine, boost::random::normal_distribution<doubl
   }
 }
 
-// Collects one filament's momentum deliveries revolution by revolution, keeping the last
-// kMaxPeriod complete revolutions (the longest orbit the steady-state search finds) and their
-// records. Rows and events are dropped. The vectors are recycled, so after the first revolutions
-// nothing is allocated.
-class DeliveryRing final : public PassSink {
-public:
-  static constexpr std::size_t kMaxPeriod = 4;
-
-  void row(const HistoryRow&) override {}
-  void event(const PassEvent&) override {}
-  bool wants_deliveries() const override { return true; }
-  void delivery(const MomentumDelivery& d) override { current_.push_back(d); }
-  void revolution(const RevolutionRecord& r) override {
-    if (!r.complete) {
-      current_.clear();
-      return;
-    }
-    std::vector<MomentumDelivery> recycled;
-    if (kept_.size() == kMaxPeriod) {
-      recycled = std::move(kept_.front().first);
-      kept_.pop_front();
-    }
-    kept_.emplace_back(std::move(current_), r);
-    current_ = std::move(recycled);
-    current_.clear();
-  }
-  /// The last m complete revolutions, oldest first (fewer when fewer were run).
-  std::vector<const std::pair<std::vector<MomentumDelivery>, RevolutionRecord>*> last(std::size_t m) const {
-    std::vector<const std::pair<std::vector<MomentumDelivery>, RevolutionRecord>*> out;
-    const std::size_t take = std::min(m, kept_.size());
-    for (std::size_t i = kept_.size() - take; i < kept_.size(); ++i) out.push_back(&kept_[i]);
-    return out;
-  }
-
-private:
-  std::vector<MomentumDelivery> current_;
-  std::deque<std::pair<std::vector<MomentumDelivery>, RevolutionRecord>> kept_;
-};
-
-// The configuration of one filament: the nominal one with its length, diameter and depth, no rows
-// or near-surface rows sampled (the brush keeps no history) and no Floquet multipliers (the brush
-// reports none; they would cost 4n runs of the orbit), validated as a file is.
-Config filament_config(const Config& base, const BrushFilament& f) {
-  Config c = base;
-  c.brush.reset();
-  c.beam.length_m = f.length_m;
-  c.beam.diameter_m = f.diameter_m;
-  c.surface.depth_fraction = f.depth_fraction;
-  c.simulation.output_interval_s = 1e30;
-  c.simulation.near_surface_gap_m = 0.0;
-  c.simulation.multipliers = false;
-  return revalidate(c);
-}
-
-double clock_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-// One distinct filament run to its steady state; its deliveries over the orbit go into `bins` once
-// per copy, shifted by the copy's phase and weighted 1/m, and into `profile` at the filament's own
-// angle, weighted (copies)/m.
-FilamentSteadyState run_distinct(const Config& config, const std::vector<const BrushFilament*>& copies,
-                                 ForceBins& bins, ForceBins& profile, const StopToken* stop) {
-  FilamentSteadyState s;
-  const double start = clock_s();
-  const Case c = build_case(config);
-  DeliveryRing ring;
-  const PassResult r = run_case(c, {&ring, stop, {}});
-  s.wall_time_s = clock_s() - start;
-  s.revolutions_run = r.summary.revolutions;
-  s.failure = r.failure;
-  if (r.failure) return s;
-  s.ran = true;
-  s.validity = r.summary.validity;
-  s.steady = r.summary.steady_state.reached;
-  const std::size_t m = s.steady ? static_cast<std::size_t>(std::max(1, r.summary.steady_state.period_revolutions)) : 1;
-  const auto orbit = ring.last(m);
-  if (orbit.empty()) {  // cannot happen for a run that ended without a failure: said, not hidden
-    s.ran = false;
-    s.error = "the run ended without a complete revolution";
-    return s;
-  }
-  s.period_revolutions = static_cast<int>(orbit.size());
-  const double weight = 1.0 / static_cast<double>(orbit.size());
-  const double omega = c.beam->hub_motion().omega;
-  const double period_s = 2.0 * M_PI / omega;
-  double normal = 0, tangential = 0, hub = 0;
-  for (const auto* rev : orbit) {
-    for (const MomentumDelivery& d : rev->first) {
-      normal += d.normal_n_s;
-      tangential += d.tangential_n_s;
-      hub += d.hub_angular_impulse_n_m_s;
-      if (d.normal_n_s > 0.0) {
-        // The delivery's own angles (its first point, and its last for a step).
-        const double last = d.from_deg + d.span_deg;
-        s.first_contact_deg = std::isnan(s.first_contact_deg) ? d.from_deg : std::min(s.first_contact_deg, d.from_deg);
-        s.last_contact_deg = std::isnan(s.last_contact_deg) ? last : std::max(s.last_contact_deg, last);
-        if (std::isfinite(d.along_m)) {
-          s.along_min_m = std::isnan(s.along_min_m) ? d.along_m : std::min(s.along_min_m, d.along_m);
-          s.along_max_m = std::isnan(s.along_max_m) ? d.along_m : std::max(s.along_max_m, d.along_m);
-        }
-      }
-    }
-    const RevolutionRecord& rec = rev->second;
-    s.impacts_per_revolution += weight * rec.impacts;
-    s.contact_time_s += weight * rec.contact_time_s;
-    s.peak_normal_force_n = std::max(s.peak_normal_force_n, rec.peak_normal_force_n);
-    s.max_tip_deflection_ratio = std::max(s.max_tip_deflection_ratio, rec.max_tip_deflection_ratio);
-    for (std::size_t k = 0; k < kLedgerTermCount; ++k) s.ledger.value[k] += weight * rec.ledger.value[k];
-    s.ledger.energy_change_j += weight * rec.ledger.energy_change_j;
-    s.ledger_residual_max_j = std::max(s.ledger_residual_max_j, std::abs(rec.ledger.residual()));
-  }
-  s.mean_normal_force_n = weight * normal / period_s;
-  s.mean_tangential_force_n = weight * tangential / period_s;
-  s.mean_hub_torque_n_m = weight * hub / period_s;
-  s.mean_hub_power_w = s.mean_hub_torque_n_m * omega;
-  for (const BrushFilament* f : copies)
-    for (const auto* rev : orbit)
-      for (const MomentumDelivery& d : rev->first) bins.add(d, f->phase_deg, weight);
-  for (const auto* rev : orbit)
-    for (const MomentumDelivery& d : rev->first) profile.add(d, 0.0, weight * static_cast<double>(copies.size()));
-  // The wear along the surface; round a spinning cylinder, whose material turns under the contact and
-  // under each copy's phase, spread evenly (wear.hpp).
-  const SurfaceCoordinate k = c.surface->coordinate();
-  s.wear_profile = mean_profile(r.wear_revolution_profiles, static_cast<int>(orbit.size()), config.simulation.wear_profile_bins,
-                                k.period);
-  if (config.surface.shape == SurfaceShape::cylinder && config.surface.speed_rpm != 0.0)
-    s.wear_profile = spread_around(s.wear_profile, config.simulation.wear_profile_bins, k.period);
-  return s;
-}
-
 // The share of the mean normal force the failed filaments are estimated to carry (BrushSummary::
 // missing_force_fraction): each failed filament counted as the finished one of the nearest depth
 // fraction (the force of a filament follows its reach first).
@@ -191,6 +62,13 @@ double missing_force_fraction(const BrushResult& result) {
   if (!any_failed) return 0.0;
   if (!any_finished) return NAN;
   return missing + finished > 0 ? missing / (missing + finished) : 0.0;
+}
+
+// The nominal filament's configuration without [brush]: what the surface's coordinate is built from.
+Config config_for_coordinate(const Config& config) {
+  Config c = config;
+  c.brush.reset();
+  return c;
 }
 
 }  // namespace
@@ -235,7 +113,7 @@ std::vector<Config> brush_filament_configs(const Config& config, const std::vect
     if (done[f.group] || !(f.depth_fraction > 0.0)) continue;
     done[f.group] = 1;
     try {
-      configs[f.group] = filament_config(config, f);
+      configs[f.group] = detail::filament_config(config, f);
     } catch (const ConfigError& e) {
       char what[200];
       std::snprintf(what, sizeof what,
@@ -248,7 +126,8 @@ std::vector<Config> brush_filament_configs(const Config& config, const std::vect
 }
 
 BrushResult run_brush(const Config& config, const BrushOptions& options) {
-  const double start = clock_s();
+  if (config.brush && config.brush->method == BrushMethod::population) return detail::run_brush_population(config, options);
+  const double start = detail::clock_s();
   BrushResult result;
   result.filaments = brush_filaments(config);
   int group_count = 0;
@@ -260,21 +139,18 @@ BrushResult run_brush(const Config& config, const BrushOptions& options) {
     copies[f.group].push_back(&f);
   }
   result.distinct.resize(group_count);
+  result.run.resize(group_count);
   std::vector<int> todo;  // groups whose tip reaches the surface
   for (int g = 0; g < group_count; ++g) {
-    if (representative[g]->depth_fraction > 0.0)
+    const BrushFilament& f = *representative[g];
+    const double n = static_cast<double>(copies[g].size());
+    result.run[g] = RunFilament{f.length_m, f.diameter_m, f.depth_fraction, n, static_cast<int>(copies[g].size())};
+    if (f.depth_fraction > 0.0)
       todo.push_back(g);
     else
       result.distinct[g].reaches = false;
   }
   const std::vector<Config> configs = brush_filament_configs(config, result.filaments);
-  {
-    const SurfaceCoordinate k = build_case(configs.front()).surface->coordinate();
-    result.wear_coordinate = k.name;
-    result.wear_coordinate_unit = k.unit;
-    result.wear_metres_per_unit = k.metres_per_unit;
-    result.wear_period = k.period;
-  }
   const double omega = rad_per_s_from_rpm(config.beam.speed_rpm);
   ForceBins total(config.simulation.bin_deg, omega), profile(config.simulation.bin_deg, omega);
   // Each group's bins are summed into the total in group order, whatever order the groups finish
@@ -292,9 +168,16 @@ BrushResult run_brush(const Config& config, const BrushOptions& options) {
       [&](std::size_t j) {
         const int g = todo[j];
         ForceBins bins(config.simulation.bin_deg, omega), own(config.simulation.bin_deg, omega);
-        FilamentSteadyState s = run_distinct(configs[g], copies[g], bins, own, options.stop);
+        detail::FilamentOrbit orbit = detail::run_filament_orbit(configs[g], options.stop);
+        // Its deliveries over the orbit go into the workpiece's bins once per copy, shifted by the
+        // copy's phase and weighted 1/m, and into the profile at the filament's own angle, weighted
+        // (copies)/m.
+        for (const BrushFilament* f : copies[g])
+          for (const MomentumDelivery& d : orbit.deliveries) bins.add(d, f->phase_deg, orbit.weight);
+        for (const MomentumDelivery& d : orbit.deliveries)
+          own.add(d, 0.0, orbit.weight * static_cast<double>(copies[g].size()));
         std::lock_guard<std::mutex> lock(mutex);
-        result.distinct[g] = std::move(s);
+        result.distinct[g] = std::move(orbit.state);
         finished_bins.emplace(static_cast<int>(j), std::make_pair(std::move(bins), std::move(own)));
         while (next_to_merge < todo.size()) {
           const auto it = finished_bins.find(static_cast<int>(next_to_merge));
@@ -305,11 +188,27 @@ BrushResult run_brush(const Config& config, const BrushOptions& options) {
           ++next_to_merge;
         }
         ++progress.finished;
-        progress.elapsed_s = clock_s() - start;
+        progress.elapsed_s = detail::clock_s() - start;
         progress.eta_s = progress.elapsed_s / progress.finished * (progress.total - progress.finished);
         if (options.on_progress) options.on_progress(progress);
       },
       runner);
+  detail::finish_brush(result, config, total, profile, start);
+  return result;
+}
+
+namespace detail {
+
+void finish_brush(BrushResult& result, const Config& config, const ForceBins& total, const ForceBins& profile,
+                  double start_s) {
+  const double omega = rad_per_s_from_rpm(config.beam.speed_rpm);
+  {
+    const SurfaceCoordinate k = build_case(config_for_coordinate(config)).surface->coordinate();
+    result.wear_coordinate = k.name;
+    result.wear_coordinate_unit = k.unit;
+    result.wear_metres_per_unit = k.metres_per_unit;
+    result.wear_period = k.period;
+  }
   result.workpiece = total.full_table();
   result.profile = profile.full_table();
   // The mean filament: the sum at the filaments' own angles over their number.
@@ -324,11 +223,12 @@ BrushResult run_brush(const Config& config, const BrushOptions& options) {
   }
 
   BrushSummary& s = result.summary;
+  s.method = config.brush ? config.brush->method : BrushMethod::filaments;
   s.filaments = static_cast<int>(result.filaments.size());
-  s.distinct_filaments = group_count;
+  s.distinct_filaments = static_cast<int>(result.distinct.size());
   s.bin_deg = config.simulation.bin_deg;
   s.revolution_period_s = 2.0 * M_PI / omega;
-  std::vector<double> wear_copies(result.distinct.size(), 0.0);  // finished filaments of each group
+  // Counts by filament (each as its distinct filament, or its nearest representative) …
   for (const BrushFilament& f : result.filaments) {
     const FilamentSteadyState& d = result.distinct[f.group];
     if (!d.reaches) continue;
@@ -347,15 +247,26 @@ BrushResult run_brush(const Config& config, const BrushOptions& options) {
       continue;
     }
     (d.steady ? s.steady : s.not_steady) += 1;
+  }
+  // … and sums by the filaments run, each weighted by the filaments it stands for.
+  std::vector<std::vector<WearBin>> wear_profiles;
+  std::vector<double> wear_weights;
+  for (std::size_t g = 0; g < result.distinct.size(); ++g) {
+    const FilamentSteadyState& d = result.distinct[g];
+    const double w = result.run[g].weight;
+    if (!d.reaches || !d.ran || !(w > 0.0)) continue;
     s.max_tip_deflection_ratio = std::max(s.max_tip_deflection_ratio, d.max_tip_deflection_ratio);
     if (static_cast<int>(d.validity) > static_cast<int>(s.validity)) s.validity = d.validity;
-    s.mean_normal_force_n += d.mean_normal_force_n;
-    s.mean_tangential_force_n += d.mean_tangential_force_n;
-    s.mean_hub_torque_n_m += d.mean_hub_torque_n_m;
-    s.ledger += d.ledger;
-    wear_copies[f.group] += 1;
-    s.ledger.energy_change_j += d.ledger.energy_change_j;
-    s.ledger_residual_max_j += d.ledger_residual_max_j;
+    s.mean_normal_force_n += w * d.mean_normal_force_n;
+    s.mean_tangential_force_n += w * d.mean_tangential_force_n;
+    s.mean_hub_torque_n_m += w * d.mean_hub_torque_n_m;
+    for (std::size_t k = 0; k < kLedgerTermCount; ++k) s.ledger.value[k] += w * d.ledger.value[k];
+    s.ledger.energy_change_j += w * d.ledger.energy_change_j;
+    s.ledger_residual_max_j += w * d.ledger_residual_max_j;
+    if (!d.wear_profile.empty()) {
+      wear_profiles.push_back(d.wear_profile);
+      wear_weights.push_back(w);
+    }
     if (std::isfinite(d.first_contact_deg)) {
       s.contact_zone_from_deg = std::isnan(s.contact_zone_from_deg) ? d.first_contact_deg
                                                                      : std::min(s.contact_zone_from_deg, d.first_contact_deg);
@@ -366,21 +277,16 @@ BrushResult run_brush(const Config& config, const BrushOptions& options) {
   s.mean_hub_power_w = s.mean_hub_torque_n_m * omega;
   s.missing_force_fraction = missing_force_fraction(result);
   // The wear along the surface: every finished filament's profile, summed (docs/wear.md).
-  std::vector<std::vector<WearBin>> wear_profiles;
-  std::vector<double> wear_weights;
-  for (std::size_t g = 0; g < result.distinct.size(); ++g)
-    if (wear_copies[g] > 0 && !result.distinct[g].wear_profile.empty()) {
-      wear_profiles.push_back(result.distinct[g].wear_profile);
-      wear_weights.push_back(wear_copies[g]);
-    }
   result.wear_profile = rebin(wear_profiles, wear_weights, config.simulation.wear_profile_bins, result.wear_period);
   if (std::isfinite(s.contact_zone_from_deg)) s.contact_zone_deg = s.contact_zone_to_deg - s.contact_zone_from_deg;
   double along_min = INFINITY, along_max = -INFINITY;
-  for (const FilamentSteadyState& d : result.distinct)
-    if (d.ran && std::isfinite(d.along_min_m)) {
+  for (std::size_t g = 0; g < result.distinct.size(); ++g) {
+    const FilamentSteadyState& d = result.distinct[g];
+    if (d.ran && result.run[g].weight > 0.0 && std::isfinite(d.along_min_m)) {
       along_min = std::min(along_min, d.along_min_m);
       along_max = std::max(along_max, d.along_max_m);
     }
+  }
   if (along_max >= along_min) s.contact_zone_width_m = along_max - along_min;
   const BinnedForcePeaks peaks = total.peaks();
   s.peak_normal_force_n = peaks.peak_normal_force_n;
@@ -430,8 +336,9 @@ BrushResult run_brush(const Config& config, const BrushOptions& options) {
   if (s.reaching < s.filaments)
     s.warnings.push_back(std::to_string(s.filaments - s.reaching) +
                          " filaments are too short to reach the surface and deliver nothing");
-  s.wall_time_s = clock_s() - start;
-  return result;
+  s.wall_time_s = clock_s() - start_s;
 }
+
+}  // namespace detail
 
 }  // namespace rotbeam

@@ -121,3 +121,22 @@ def test_brush_map_of_a_sweep(tmp_path):
     assert (out / "brush_map.png").exists()
     summary = json.loads((out / "case-0001" / "summary.json").read_text())
     assert summary["kind"] == "brush"
+
+
+def test_a_population_from_python_matches_its_representatives():
+    # brush.method = "population": the representatives stand for every filament that reaches (their
+    # weights sum to that count), each filament's interpolated means sum to the brush's, and the
+    # summary carries the estimate the population made of its own error.
+    fast = {"beam.modes": 3, "beam.damping_ratio": 0.1, "surface.depth_fraction": 0.03, "brush.filaments": 40,
+            "brush.length_scatter": 0.05, "brush.method": "population", "brush.population_max_runs": 20}
+    b = rotbeam.brush(overrides=fast, jobs=2)
+    assert b.failure is None
+    s = b.summary
+    assert s["method"] == "population" and s["population"]["representatives"] == s["distinct_filaments"] <= 20
+    r = b.representatives
+    reaching = r["status"] != "clear"
+    assert np.sum(r["weight"][reaching]) == pytest.approx(s["reaching_filaments"], rel=1e-12)
+    assert np.sum(r["nearest"]) == s["filaments"]
+    assert np.sum(b.filaments["mean_normal_force_n"]) == pytest.approx(s["mean_normal_force_n"], rel=1e-9)
+    assert 0 < s["population"]["estimated_error"]["mean_normal_force"] < 1
+    assert "representatives" in repr(b)

@@ -1,0 +1,498 @@
+// The brush as a population (brush.method = "population", docs/brush.md): the brush's force, torque
+// and power as sums over its drawn filaments of per-filament values interpolated from a few
+// representative filaments, run to their steady state on a grid of lengths × diameters refined
+// where the sums need it.
+//
+// The interpolant is bilinear on the grid's nodes. Each axis is a set of cells [a, b] whose midpoint
+// m is a node as well; a cell's indicator is what m changed in the brush's sums,
+//   Δ = Σ_k hat_m(x_k)·(g(m) − (g(a) + g(b))/2)   over the filaments k inside the cell,
+// with g the value interpolated along the other axis at the filament. The estimate of the error left
+// is Σ|Δ| over the cells: for a smooth g the interpolant's error over a cell is Δ/3 (linear
+// interpolation's error falls by 4 when the cell is halved), but where the orbit changes inside a
+// cell (an impact more or less a revolution puts a kink or a step into g) it falls only by 2 or not
+// at all, and Δ itself is the honest figure. Cells whose indicators hold at least half of the total
+// are split (Dörfler's marking) until the estimated error of the mean normal force and of the hub
+// torque is below brush.population_tolerance, or brush.population_max_runs is reached (then the
+// summary says the tolerance was not met).
+//
+// The grid spans the filaments that reach the surface, from the shortest of them: a filament that
+// barely reaches may strike hard (one impact a revolution at nearly the full tip speed can deliver
+// more than many shallow contacts), so the force does not vanish continuously at zero depth and is
+// not extrapolated there. Filaments too short to reach deliver nothing and run nothing.
+#include "brush_filament.hpp"
+
+#include "rotbeam/case.hpp"
+#include "rotbeam/job_runner.hpp"
+#include "rotbeam/units.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <mutex>
+
+namespace rotbeam::detail {
+
+namespace {
+
+// A cell of an axis: its ends and midpoint (all nodes of the axis).
+struct Cell {
+  double a = 0, m = 0, b = 0;
+};
+
+// One axis of the grid: its sorted nodes and its leaf cells (none for a single node).
+struct Axis {
+  std::vector<double> nodes;
+  std::vector<Cell> cells;
+
+  static Axis over(double lo, double hi, int cells) {
+    Axis x;
+    if (!(hi > lo)) {
+      x.nodes = {lo};
+      return x;
+    }
+    const double h = (hi - lo) / cells;
+    for (int c = 0; c < cells; ++c) {
+      const double a = lo + c * h, b = c + 1 == cells ? hi : lo + (c + 1) * h;
+      x.cells.push_back({a, 0.5 * (a + b), b});
+      x.nodes.push_back(a);
+      x.nodes.push_back(0.5 * (a + b));
+    }
+    x.nodes.push_back(hi);
+    return x;
+  }
+  // The interval of nodes holding v and the weight of its right node (0 on a single node).
+  std::pair<int, double> locate(double v) const {
+    if (nodes.size() < 2) return {0, 0.0};
+    const auto it = std::upper_bound(nodes.begin(), nodes.end(), v);
+    int i = static_cast<int>(it - nodes.begin()) - 1;
+    i = std::clamp(i, 0, static_cast<int>(nodes.size()) - 2);
+    const double t = (v - nodes[i]) / (nodes[i + 1] - nodes[i]);
+    return {i, std::clamp(t, 0.0, 1.0)};
+  }
+  int index_of(double v) const {
+    return static_cast<int>(std::lower_bound(nodes.begin(), nodes.end(), v) - nodes.begin());
+  }
+  // Splits cell c into two, whose midpoints are new nodes.
+  void split(std::size_t c) {
+    const Cell cell = cells[c];
+    const Cell left{cell.a, 0.5 * (cell.a + cell.m), cell.m}, right{cell.m, 0.5 * (cell.m + cell.b), cell.b};
+    cells[c] = left;
+    cells.push_back(right);
+    nodes.insert(std::upper_bound(nodes.begin(), nodes.end(), left.m), left.m);
+    nodes.insert(std::upper_bound(nodes.begin(), nodes.end(), right.m), right.m);
+  }
+};
+
+// The quantities the refinement watches: mean normal force, tangential force and hub torque.
+constexpr int kWatched = 3;
+using Watched = std::array<double, kWatched>;
+
+Watched watched(const FilamentSteadyState& s) {
+  return {s.mean_normal_force_n, s.mean_tangential_force_n, s.mean_hub_torque_n_m};
+}
+
+// A node of the grid and its run (or the stand-in of the filaments that do not reach).
+struct Node {
+  double length_m = 0, diameter_m = 0;
+  bool zero = false;  // the stand-in of the filaments that do not reach: zero values, not run
+  FilamentOrbit orbit;
+  int source = -1;    // whose values stand in for it (itself, or for a failed run the nearest finished node)
+};
+
+class Population {
+public:
+  Population(const Config& config, const BrushOptions& options, BrushResult& result)
+      : config_(config), options_(options), result_(result), start_(clock_s()) {}
+
+  void run();
+
+private:
+  // The node at (length, diameter), created (not yet run) when new.
+  int node_at(double length, double diameter) {
+    const auto key = std::make_pair(length, diameter);
+    const auto it = index_.find(key);
+    if (it != index_.end()) return it->second;
+    Node n;
+    n.length_m = length;
+    n.diameter_m = diameter;
+    nodes_.push_back(std::move(n));
+    const int id = static_cast<int>(nodes_.size()) - 1;
+    index_.emplace(key, id);
+    if (!nodes_.back().zero) pending_.push_back(id);
+    return id;
+  }
+  int real_runs() const {
+    int n = 0;
+    for (const Node& node : nodes_) n += !node.zero;
+    return n;
+  }
+  void add_grid() {
+    for (double l : lengths_.nodes)
+      for (double d : diameters_.nodes) node_at(l, d);
+  }
+  void run_pending();
+  void fill_sources();
+  Watched value(int node) const {
+    const Node& n = nodes_[node];
+    if (n.zero || n.source < 0) return {0, 0, 0};
+    return watched(nodes_[n.source].orbit.state);
+  }
+  // Bilinear weights of a filament on the grid: up to four (node, weight).
+  std::array<std::pair<int, double>, 4> weights(double length, double diameter) const;
+  Watched interpolate(double length, double diameter) const {
+    Watched v{};
+    for (const auto& [node, w] : weights(length, diameter))
+      if (w != 0.0) {
+        const Watched n = value(node);
+        for (int q = 0; q < kWatched; ++q) v[q] += w * n[q];
+      }
+    return v;
+  }
+  // One refinement round's indicators; true when the estimate meets the tolerance.
+  bool estimate(std::vector<std::pair<double, std::pair<int, std::size_t>>>& marks);
+  void assemble();
+
+  const Config& config_;
+  const BrushOptions& options_;
+  BrushResult& result_;
+  double start_;
+  Axis lengths_, diameters_;
+  std::vector<Node> nodes_;
+  std::map<std::pair<double, double>, int> index_;
+  std::vector<int> pending_;
+  std::vector<const BrushFilament*> reaching_, by_length_, by_diameter_;
+  PopulationEstimate estimate_;
+  BrushProgress progress_;
+};
+
+std::array<std::pair<int, double>, 4> Population::weights(double length, double diameter) const {
+  const auto [i, t] = lengths_.locate(length);
+  const auto [j, s] = diameters_.locate(diameter);
+  const auto at = [&](int a, int b) {
+    return index_.at(std::make_pair(lengths_.nodes[a], diameters_.nodes[b]));
+  };
+  const int i1 = lengths_.nodes.size() > 1 ? i + 1 : i, j1 = diameters_.nodes.size() > 1 ? j + 1 : j;
+  return {std::make_pair(at(i, j), (1 - t) * (1 - s)), std::make_pair(at(i1, j), t * (1 - s)),
+          std::make_pair(at(i, j1), (1 - t) * s), std::make_pair(at(i1, j1), t * s)};
+}
+
+void Population::run_pending() {
+  if (pending_.empty()) return;
+  std::vector<int> todo;
+  todo.swap(pending_);
+  std::vector<Config> configs(todo.size());
+  const double l0 = config_.beam.length_m, p0 = config_.surface.depth_fraction;
+  for (std::size_t j = 0; j < todo.size(); ++j) {
+    Node& n = nodes_[todo[j]];
+    BrushFilament f;
+    f.length_m = n.length_m;
+    f.diameter_m = n.diameter_m;
+    f.depth_fraction = n.length_m == l0 ? p0 : (n.length_m - l0 + p0 * l0) / n.length_m;
+    try {
+      configs[j] = filament_config(config_, f);
+    } catch (const ConfigError& e) {
+      char what[200];
+      std::snprintf(what, sizeof what, "brush: the representative filament L = %.6g m, D = %.6g m (depth fraction %.6g): ",
+                    f.length_m, f.diameter_m, f.depth_fraction);
+      throw ConfigError(what + std::string(e.what()));
+    }
+  }
+  progress_.total += static_cast<int>(todo.size());
+  std::mutex mutex;
+  JobRunnerOptions runner;
+  runner.threads = options_.threads;
+  runner.stop = options_.stop;
+  run_jobs(
+      todo.size(),
+      [&](std::size_t j) {
+        FilamentOrbit orbit = run_filament_orbit(configs[j], options_.stop);
+        std::lock_guard<std::mutex> lock(mutex);
+        nodes_[todo[j]].orbit = std::move(orbit);
+        ++progress_.finished;
+        progress_.elapsed_s = clock_s() - start_;
+        progress_.eta_s = progress_.elapsed_s / progress_.finished * (progress_.total - progress_.finished);
+        if (options_.on_progress) options_.on_progress(progress_);
+      },
+      runner);
+  // A job the stop kept from starting left its node's state as never run (ran = false).
+  fill_sources();
+}
+
+// A failed node's values are its nearest finished node's along the length axis (the same diameter),
+// else along the diameter axis; counted failed all the same (its filaments' status says so).
+void Population::fill_sources() {
+  for (std::size_t k = 0; k < nodes_.size(); ++k) {
+    Node& n = nodes_[k];
+    if (n.zero || n.orbit.state.ran) {
+      n.source = static_cast<int>(k);
+      continue;
+    }
+    n.source = -1;
+    double best = INFINITY;
+    for (std::size_t o = 0; o < nodes_.size(); ++o) {
+      const Node& c = nodes_[o];
+      if (c.zero || !c.orbit.state.ran) continue;
+      const double dl = std::abs(c.length_m - n.length_m) / config_.beam.length_m;
+      const double dd = std::abs(c.diameter_m - n.diameter_m) / config_.beam.diameter_m;
+      const double distance = dd == 0.0 ? dl : 1e6 + dd + dl;  // the same diameter first
+      if (distance < best) best = distance, n.source = static_cast<int>(o);
+    }
+  }
+}
+
+bool Population::estimate(std::vector<std::pair<double, std::pair<int, std::size_t>>>& marks) {
+  Watched sum{};
+  for (const BrushFilament* f : reaching_) {
+    const Watched v = interpolate(f->length_m, f->diameter_m);
+    for (int q = 0; q < kWatched; ++q) sum[q] += v[q];
+  }
+  Watched error{};
+  marks.clear();
+  const auto scale = [&](int q) { return std::max(std::abs(sum[q]), 1e-300); };
+  for (int axis = 0; axis < 2; ++axis) {
+    const Axis& ax = axis == 0 ? lengths_ : diameters_;
+    for (std::size_t c = 0; c < ax.cells.size(); ++c) {
+      const Cell& cell = ax.cells[c];
+      const double half = 0.5 * (cell.b - cell.a);
+      Watched delta{};
+      // The filaments inside the cell, from the axis's sorted order. Interpolated at a node of this
+      // axis, the interpolant is the other axis's interpolation along that node's line (g).
+      const std::vector<const BrushFilament*>& sorted = axis == 0 ? by_length_ : by_diameter_;
+      const auto key = [axis](const BrushFilament* f) { return axis == 0 ? f->length_m : f->diameter_m; };
+      auto it = std::upper_bound(sorted.begin(), sorted.end(), cell.a,
+                                 [&](double v, const BrushFilament* f) { return v < key(f); });
+      for (; it != sorted.end() && key(*it) < cell.b; ++it) {
+        const BrushFilament* f = *it;
+        const double x = key(f);
+        const double hat = 1.0 - std::abs(x - cell.m) / half;
+        const auto at = [&](double node) {
+          return axis == 0 ? interpolate(node, f->diameter_m) : interpolate(f->length_m, node);
+        };
+        const Watched gm = at(cell.m), ga = at(cell.a), gb = at(cell.b);
+        for (int q = 0; q < kWatched; ++q) delta[q] += hat * (gm[q] - 0.5 * (ga[q] + gb[q]));
+      }
+      double eta = 0;
+      for (int q = 0; q < kWatched; ++q) {
+        error[q] += std::abs(delta[q]);
+        if (q != 1) eta = std::max(eta, std::abs(delta[q]) / scale(q));  // the tangential force is not steered on
+      }
+      const double width = (cell.b - cell.a) / (axis == 0 ? config_.beam.length_m : config_.beam.diameter_m);
+      if (eta > 0.0 && width > 1e-9) marks.push_back({eta, {axis, c}});
+    }
+  }
+  estimate_.normal_force_error = error[0] / scale(0);
+  estimate_.tangential_force_error = error[1] / scale(1);
+  estimate_.hub_torque_error = error[2] / scale(2);
+  return estimate_.normal_force_error <= estimate_.tolerance && estimate_.hub_torque_error <= estimate_.tolerance;
+}
+
+void Population::run() {
+  const BrushSettings& b = *config_.brush;
+  estimate_.tolerance = b.population_tolerance;
+  result_.filaments = brush_filaments(config_);
+  // Check every drawn filament's configuration before anything runs, as the filament route does.
+  for (BrushFilament& f : result_.filaments) {
+    f.group = 0;
+    if (f.depth_fraction > 0.0) reaching_.push_back(&f);
+  }
+  by_length_ = by_diameter_ = reaching_;
+  std::stable_sort(by_length_.begin(), by_length_.end(),
+                   [](const BrushFilament* a, const BrushFilament* b) { return a->length_m < b->length_m; });
+  std::stable_sort(by_diameter_.begin(), by_diameter_.end(),
+                   [](const BrushFilament* a, const BrushFilament* b) { return a->diameter_m < b->diameter_m; });
+  if (!reaching_.empty()) {
+    const double l0 = config_.beam.length_m, p0 = config_.surface.depth_fraction;
+    double l_lo = INFINITY, l_hi = -INFINITY, d_lo = INFINITY, d_hi = -INFINITY;
+    for (const BrushFilament* f : reaching_) {
+      l_lo = std::min(l_lo, f->length_m), l_hi = std::max(l_hi, f->length_m);
+      d_lo = std::min(d_lo, f->diameter_m), d_hi = std::max(d_hi, f->diameter_m);
+    }
+    lengths_ = Axis::over(l_lo, l_hi, 2);
+    diameters_ = Axis::over(d_lo, d_hi, 1);
+    add_grid();
+    run_pending();
+    std::vector<std::pair<double, std::pair<int, std::size_t>>> marks;
+    for (;;) {
+      if (options_.stop && options_.stop->stop_requested()) break;
+      ++estimate_.rounds;
+      if (estimate(marks)) {
+        estimate_.converged = true;
+        break;
+      }
+      std::sort(marks.begin(), marks.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+      double total = 0;
+      for (const auto& m : marks) total += m.first;
+      // Dörfler's marking within the budget: the cells holding half of the estimate, largest first.
+      std::vector<std::pair<int, std::size_t>> split;
+      double taken = 0;
+      int runs = real_runs();
+      for (const auto& [eta, where] : marks) {
+        const int cost = 2 * static_cast<int>(where.first == 0 ? diameters_.nodes.size() : lengths_.nodes.size());
+        if (runs + cost > b.population_max_runs) continue;  // a cheaper cell may still fit
+        runs += cost;
+        split.push_back(where);
+        taken += eta;
+        if (taken >= 0.5 * total) break;
+      }
+      if (split.empty()) break;  // the budget is spent
+      // Split the highest cell indices first so that earlier indices stay valid.
+      std::sort(split.begin(), split.end(), [](const auto& x, const auto& y) { return x > y; });
+      for (const auto& [axis, c] : split) (axis == 0 ? lengths_ : diameters_).split(c);
+      add_grid();
+      run_pending();
+    }
+  }
+  assemble();
+}
+
+void Population::assemble() {
+  const double omega = rad_per_s_from_rpm(config_.beam.speed_rpm);
+  // The filaments run: every node of the grid, and a stand-in (not run) for the filaments that do not
+  // reach the surface, at the length that just reaches it.
+  const double l0 = config_.beam.length_m, p0 = config_.surface.depth_fraction;
+  if (reaching_.size() < result_.filaments.size()) {
+    Node n;
+    n.length_m = l0 * (1.0 - p0);
+    n.diameter_m = config_.beam.diameter_m;
+    n.zero = true;
+    nodes_.push_back(std::move(n));
+  }
+  const std::size_t count = nodes_.size();
+  result_.distinct.assign(count, FilamentSteadyState{});
+  result_.run.assign(count, RunFilament{});
+  for (std::size_t k = 0; k < count; ++k) {
+    const Node& n = nodes_[k];
+    RunFilament& r = result_.run[k];
+    r.length_m = n.length_m;
+    r.diameter_m = n.diameter_m;
+    r.depth_fraction = n.zero ? 0.0 : n.length_m == l0 ? p0 : (n.length_m - l0 + p0 * l0) / n.length_m;
+    if (n.zero)
+      result_.distinct[k].reaches = false;
+    else
+      result_.distinct[k] = n.orbit.state;
+  }
+  // Each filament: its weights on the nodes, its estimates, its nearest node run.
+  result_.estimates.assign(result_.filaments.size(), FilamentEstimate{});
+  // Phases to the nearest quarter of output.bin_deg (at most 8192 cells round the revolution).
+  const int cells = std::min(8192, std::max(1, static_cast<int>(std::lround(360.0 / config_.simulation.bin_deg))) * 4);
+  const double cell_deg = 360.0 / cells;
+  std::vector<std::vector<double>> phases(count);  // per node: the weights of its filaments' phases, by fine cell
+  for (BrushFilament& f : result_.filaments) {
+    if (!(f.depth_fraction > 0.0)) {
+      f.group = static_cast<int>(count) - 1;  // the stand-in, last
+      ++result_.run[f.group].nearest;
+      continue;
+    }
+    FilamentEstimate& e = result_.estimates[f.index];
+    int nearest = -1;
+    double nearest_w = -1;
+    const int cell = static_cast<int>(std::lround(f.phase_deg / cell_deg)) % cells;
+    for (const auto& [node, w] : weights(f.length_m, f.diameter_m)) {
+      if (w == 0.0) continue;
+      if (!nodes_[node].zero && w > nearest_w) nearest = node, nearest_w = w;
+      result_.run[node].weight += w;
+      auto& ph = phases[node];
+      if (ph.empty()) ph.assign(cells, 0.0);
+      ph[(cell + cells) % cells] += w;
+      const Node& n = nodes_[node];
+      if (n.zero || n.source < 0) continue;
+      const FilamentSteadyState& s = nodes_[n.source].orbit.state;
+      e.mean_normal_force_n += w * s.mean_normal_force_n;
+      e.mean_tangential_force_n += w * s.mean_tangential_force_n;
+      e.mean_hub_torque_n_m += w * s.mean_hub_torque_n_m;
+      e.impacts_per_revolution += w * s.impacts_per_revolution;
+      e.contact_time_s += w * s.contact_time_s;
+      e.peak_normal_force_n += w * s.peak_normal_force_n;
+      e.max_tip_deflection_ratio += w * s.max_tip_deflection_ratio;
+      e.ledger_residual_max_j += w * s.ledger_residual_max_j;
+    }
+    e.mean_hub_power_w = e.mean_hub_torque_n_m * omega;
+    f.group = nearest;
+    ++result_.run[nearest].nearest;
+  }
+  // The workpiece: each node's orbit at its own angle, on fine cells, turned by its filaments' phases
+  // (each to the nearest fine cell) and summed; the profile at the own angle.
+  ForceBins total(config_.simulation.bin_deg, omega), profile(config_.simulation.bin_deg, omega);
+  std::vector<double> own_n(cells), own_t(cells), own_h(cells), own_i(cells);
+  std::vector<double> ref_n(cells, 0.0), ref_t(cells, 0.0), ref_h(cells, 0.0), ref_i(cells, 0.0);
+  for (std::size_t k = 0; k < nodes_.size(); ++k) {
+    const Node& n = nodes_[k];
+    if (n.zero || n.source < 0 || phases[k].empty()) continue;
+    const FilamentOrbit& orbit = nodes_[n.source].orbit;
+    const double weight_all = result_.run[k].weight;
+    std::fill(own_n.begin(), own_n.end(), 0.0), std::fill(own_t.begin(), own_t.end(), 0.0);
+    std::fill(own_h.begin(), own_h.end(), 0.0), std::fill(own_i.begin(), own_i.end(), 0.0);
+    for (const MomentumDelivery& d : orbit.deliveries) {
+      profile.add(d, 0.0, orbit.weight * weight_all);
+      // The delivery on the fine cells of its own angle, spread uniformly over what it spans.
+      const double from = d.from_deg + 180.0;
+      const int first = static_cast<int>(std::floor(from / cell_deg));
+      if (!(d.span_deg > 0.0)) {
+        const int c = ((first % cells) + cells) % cells;
+        own_n[c] += orbit.weight * d.normal_n_s, own_t[c] += orbit.weight * d.tangential_n_s;
+        own_h[c] += orbit.weight * d.hub_angular_impulse_n_m_s;
+        if (d.impact) own_i[c] += orbit.weight;
+        continue;
+      }
+      const double to = from + d.span_deg;
+      for (int c = first; c * cell_deg < to; ++c) {
+        const double lo = std::max(from, c * cell_deg), hi = std::min(to, (c + 1) * cell_deg);
+        if (!(hi > lo)) continue;
+        const double share = (hi - lo) / d.span_deg * orbit.weight;
+        const int w = ((c % cells) + cells) % cells;
+        own_n[w] += share * d.normal_n_s, own_t[w] += share * d.tangential_n_s;
+        own_h[w] += share * d.hub_angular_impulse_n_m_s;
+      }
+    }
+    const std::vector<double>& ph = phases[k];
+    std::vector<int> own_cells;
+    for (int c = 0; c < cells; ++c)
+      if (own_n[c] != 0.0 || own_t[c] != 0.0 || own_h[c] != 0.0 || own_i[c] != 0.0) own_cells.push_back(c);
+    for (int j = 0; j < cells; ++j) {
+      const double w = ph[j];
+      if (w == 0.0) continue;
+      for (const int c : own_cells) {
+        const int r = (c - j + cells) % cells;  // a filament at phase j reaches own angle c at reference r
+        ref_n[r] += w * own_n[c], ref_t[r] += w * own_t[c], ref_h[r] += w * own_h[c], ref_i[r] += w * own_i[c];
+      }
+    }
+  }
+  for (int r = 0; r < cells; ++r) {
+    if (ref_n[r] != 0.0 || ref_t[r] != 0.0 || ref_h[r] != 0.0)
+      total.add_spread(-180.0 + r * cell_deg, cell_deg, ref_n[r], ref_t[r], ref_h[r]);
+    total.add_impacts(-180.0 + (r + 0.5) * cell_deg, ref_i[r]);
+  }
+
+  finish_brush(result_, config_, total, profile, start_);
+  BrushSummary& s = result_.summary;
+  estimate_.lengths = static_cast<int>(lengths_.nodes.size());
+  estimate_.diameters = static_cast<int>(diameters_.nodes.size());
+  s.distinct_filaments = real_runs();
+  s.population = estimate_;
+  if (!reaching_.empty() && !estimate_.converged && !(options_.stop && options_.stop->stop_requested())) {
+    char w[320];
+    std::snprintf(w, sizeof w,
+                  "the population's estimated error (mean normal force %.3g, hub torque %.3g, relative) is above "
+                  "brush.population_tolerance = %.3g after %d representative filaments: raise "
+                  "brush.population_max_runs, or use brush.method = \"filaments\"",
+                  estimate_.normal_force_error, estimate_.hub_torque_error, estimate_.tolerance, real_runs());
+    s.warnings.push_back(w);
+  }
+  int failed = 0;
+  for (const Node& n : nodes_) failed += !n.zero && !n.orbit.state.ran;
+  if (failed > 0)
+    s.warnings.push_back(std::to_string(failed) + " representative filaments failed: their neighbours' values stand in "
+                         "for them, and the filaments nearest to them are counted failed");
+}
+
+}  // namespace
+
+BrushResult run_brush_population(const Config& config, const BrushOptions& options) {
+  BrushResult result;
+  Population(config, options, result).run();
+  return result;
+}
+
+}  // namespace rotbeam::detail

@@ -1,0 +1,143 @@
+// The brush as a population (brush.method = "population", docs/brush.md), checked against the
+// filament-by-filament route on the same drawn filaments: its sums within its own error estimate,
+// exact where every filament is a node, the workpiece's phase-shifted sum, the counts, its
+// independence of the thread count, and the configuration and command line.
+#include "rotbeam/brush.hpp"
+#include "rotbeam/brush_output.hpp"
+#include "rotbeam/config.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+#include <unistd.h>
+
+using namespace rotbeam;
+
+namespace {
+
+BrushResult brush(std::vector<std::string> sets, const std::string& method, int threads = 0) {
+  sets.push_back("brush.method=\"" + method + "\"");
+  BrushOptions o;
+  o.threads = threads;
+  return run_brush(load_config_string("", sets), o);
+}
+
+double rel(double a, double b) { return std::abs(a - b) / std::max(std::abs(b), 1e-300); }
+
+// A filament that settles in a few revolutions (about 0.1 s a run): 3 modes, 10 % damping, 3 % depth.
+const std::vector<std::string> kFast = {"beam.modes=3", "beam.damping_ratio=0.1", "surface.friction=0.2",
+                                        "surface.depth_fraction=0.03"};
+
+}  // namespace
+
+// The population's sums against the filament-by-filament route over the same 60 filaments (lengths
+// scattered by 5 %, some too short to reach; diameters by 2 %; phases jittered): within 1 % (the
+// issue's target) and within twice the population's own estimate (the estimate is honest), with
+// fewer runs than filaments. Seen to fail when the estimate drops its 1/3 or its hat weights.
+TEST(BrushPopulation, AgreesWithTheFilamentRouteWithinItsOwnEstimate) {
+  for (const std::vector<std::string>& scatter :
+       {std::vector<std::string>{"brush.length_scatter=0.05"},
+        std::vector<std::string>{"brush.length_scatter=0.05", "brush.diameter_scatter=0.02", "brush.phase_jitter_deg=2"}}) {
+    std::vector<std::string> sets = kFast;
+    sets.insert(sets.end(), scatter.begin(), scatter.end());
+    sets.insert(sets.end(), {"brush.filaments=60", "brush.seed=3", "brush.population_tolerance=0.002",
+                             "brush.population_max_runs=40"});
+    const BrushResult f = brush(sets, "filaments"), p = brush(sets, "population");
+    ASSERT_FALSE(f.summary.failure);
+    ASSERT_FALSE(p.summary.failure);
+    ASSERT_TRUE(p.summary.population);
+    const PopulationEstimate& e = *p.summary.population;
+    EXPECT_LT(p.summary.distinct_filaments, f.summary.reaching) << scatter.size();
+    EXPECT_EQ(p.summary.reaching, f.summary.reaching);
+    EXPECT_EQ(p.summary.steady + p.summary.not_steady, f.summary.steady + f.summary.not_steady);
+    const double normal = rel(p.summary.mean_normal_force_n, f.summary.mean_normal_force_n);
+    const double torque = rel(p.summary.mean_hub_torque_n_m, f.summary.mean_hub_torque_n_m);
+    EXPECT_LT(normal, 0.01) << scatter.size();
+    EXPECT_LT(torque, 0.01) << scatter.size();
+    EXPECT_LE(normal, 2.0 * e.normal_force_error) << scatter.size();
+    EXPECT_LE(torque, 2.0 * e.hub_torque_error) << scatter.size();
+    EXPECT_DOUBLE_EQ(p.summary.mean_hub_power_w, p.summary.mean_hub_torque_n_m * 550 * M_PI / 30);
+    // The workpiece carries the means' momentum, and the profile the mean filament's.
+    double bins = 0, profile = 0;
+    for (const ForceBin& b : p.workpiece) bins += b.normal_impulse_n_s;
+    for (const ForceBin& b : p.profile) profile += b.normal_impulse_n_s;
+    const double period = p.summary.revolution_period_s;
+    EXPECT_LT(rel(bins / period, p.summary.mean_normal_force_n), 1e-9);
+    EXPECT_LT(rel(profile * p.summary.filaments / period, p.summary.mean_normal_force_n), 1e-9);
+    // Each filament's estimate sums to the brush's.
+    double sum = 0;
+    for (const FilamentEstimate& est : p.estimates) sum += est.mean_normal_force_n;
+    EXPECT_LT(rel(sum, p.summary.mean_normal_force_n), 1e-9);
+  }
+}
+
+// Without scatter every filament is the one node: the population is the filament route to
+// rounding, the workpiece bin by bin included (4 filaments 90° apart: phases on whole fine cells).
+TEST(BrushPopulation, IdenticalFilamentsAreTheFilamentRoute) {
+  std::vector<std::string> sets = kFast;
+  sets.push_back("brush.filaments=4");
+  const BrushResult f = brush(sets, "filaments"), p = brush(sets, "population");
+  ASSERT_FALSE(p.summary.failure);
+  EXPECT_EQ(p.summary.distinct_filaments, 1);
+  EXPECT_LT(rel(p.summary.mean_normal_force_n, f.summary.mean_normal_force_n), 1e-12);
+  EXPECT_LT(rel(p.summary.mean_hub_torque_n_m, f.summary.mean_hub_torque_n_m), 1e-12);
+  EXPECT_LT(rel(p.summary.ledger[LedgerTerm::friction_work], f.summary.ledger[LedgerTerm::friction_work]), 1e-12);
+  ASSERT_EQ(p.workpiece.size(), f.workpiece.size());
+  double largest = 0;
+  for (const ForceBin& b : f.workpiece) largest = std::max(largest, b.normal_impulse_n_s);
+  for (std::size_t k = 0; k < f.workpiece.size(); ++k) {
+    EXPECT_NEAR(p.workpiece[k].normal_impulse_n_s, f.workpiece[k].normal_impulse_n_s, 1e-12 * largest) << k;
+    EXPECT_EQ(p.workpiece[k].impacts, f.workpiece[k].impacts) << k;
+  }
+  EXPECT_TRUE(p.summary.population->converged);
+}
+
+// The same brush on one thread and on two: the same files, byte for byte.
+TEST(BrushPopulation, IndependentOfTheThreadCount) {
+  std::vector<std::string> sets = kFast;
+  sets.insert(sets.end(), {"brush.filaments=30", "brush.length_scatter=0.04", "brush.diameter_scatter=0.02",
+                           "brush.phase_jitter_deg=3", "brush.population_max_runs=20"});
+  const BrushResult a = brush(sets, "population", 1), b = brush(sets, "population", 2);
+  const double omega = 550 * M_PI / 30;
+  EXPECT_EQ(workpiece_csv(a, omega), workpiece_csv(b, omega));
+  EXPECT_EQ(profile_csv(a, omega), profile_csv(b, omega));
+  EXPECT_EQ(filaments_csv(a), filaments_csv(b));
+  EXPECT_EQ(representatives_csv(a), representatives_csv(b));
+}
+
+// The budget: a population that cannot meet its tolerance within brush.population_max_runs says so
+// (a warning naming both keys) and reports its estimate; it never runs more than the budget.
+TEST(BrushPopulation, ABudgetTooSmallIsSaid) {
+  std::vector<std::string> sets = kFast;
+  sets.insert(sets.end(), {"brush.filaments=40", "brush.length_scatter=0.05", "brush.population_tolerance=1e-6",
+                           "brush.population_max_runs=6"});
+  const BrushResult p = brush(sets, "population");
+  ASSERT_TRUE(p.summary.population);
+  EXPECT_FALSE(p.summary.population->converged);
+  EXPECT_LE(p.summary.distinct_filaments, 6);
+  bool said = false;
+  for (const std::string& w : p.summary.warnings)
+    said |= w.find("brush.population_max_runs") != std::string::npos && w.find("brush.population_tolerance") != std::string::npos;
+  EXPECT_TRUE(said);
+}
+
+// The keys: brush.method's words, the tolerance and the budget's ranges, each refused by name.
+TEST(BrushPopulation, ConfigurationRefusals) {
+  const auto refused = [](const std::string& set, const std::string& key) {
+    try {
+      load_config_string("", {"brush.filaments=3", set});
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+      return true;
+    }
+    return false;
+  };
+  EXPECT_TRUE(refused("brush.method=\"sample\"", "brush.method"));
+  EXPECT_TRUE(refused("brush.population_tolerance=0", "brush.population_tolerance"));
+  EXPECT_TRUE(refused("brush.population_max_runs=2", "brush.population_max_runs"));
+  EXPECT_NO_THROW(load_config_string("", {"brush.filaments=3", "brush.method=\"population\""}));
+}
