@@ -177,7 +177,8 @@ py::tuple brush(const std::optional<std::string>& path, const Values& overrides,
   return py::make_tuple(from_json(brush_summary_json(result, config)), py::bytes(workpiece_csv(result, omega)),
                         py::bytes(profile_csv(result, omega)), py::bytes(filaments_csv(result)),
                         py::bytes(wear_profile_csv(brush_wear_report(result, config), config.wear)),
-                        py::bytes(representatives_csv(result)));
+                        py::bytes(representatives_csv(result)),
+                        py::bytes(spectrum_csv(result, omega, config.brush->filaments)));
 }
 
 py::tuple wear(const std::optional<std::string>& path, const Values& overrides, double hours, int steps) {
@@ -452,7 +453,7 @@ PYBIND11_MODULE(_core, m) {
         "force_bins.csv's text, wear_profile.csv's text).");
   m.def("brush", &brush, py::arg("path"), py::arg("overrides"), py::arg("threads"),
         "A brush at its steady state: (summary dict, workpiece.csv's, profile.csv's, filaments.csv's, "
-        "wear_profile.csv's and representatives.csv's text).");
+        "wear_profile.csv's, representatives.csv's and spectrum.csv's text).");
   m.def("wear", &wear, py::arg("path"), py::arg("overrides"), py::arg("hours"), py::arg("steps"),
         "Wear over hours of operation: (summary dict, wear_history.csv's and wear_depth.csv's text).");
   m.def("impact", &impact, py::arg("path"), py::arg("overrides"),

@@ -5,6 +5,7 @@
 #include "rotbeam/brush.hpp"
 #include "rotbeam/brush_output.hpp"
 #include "rotbeam/config.hpp"
+#include "rotbeam/pass.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -140,4 +141,52 @@ TEST(BrushPopulation, ConfigurationRefusals) {
   EXPECT_TRUE(refused("brush.population_tolerance=0", "brush.population_tolerance"));
   EXPECT_TRUE(refused("brush.population_max_runs=2", "brush.population_max_runs"));
   EXPECT_NO_THROW(load_config_string("", {"brush.filaments=3", "brush.method=\"population\""}));
+}
+
+// The workpiece's spectrum: N identical filaments equally spaced make a force that repeats N times a
+// revolution, so only harmonics at multiples of N carry amplitude (the others cancel to rounding),
+// and order 0 is the mean force. With 5 filaments, order 5's amplitude is 5 times a single filament's
+// order-5 amplitude (the copies add in phase there): a lost copy, a wrong scale or the one-sided
+// factor 2 moves it by O(1).
+TEST(BrushSpectrum, IdenticalFilamentsHaveLinesAtMultiplesOfTheirNumber) {
+  std::vector<std::string> one = kFast, five = kFast;
+  one.push_back("brush.filaments=1");
+  five.push_back("brush.filaments=5");
+  const BrushResult a = brush(one, "filaments"), b = brush(five, "filaments");
+  const double omega = 550 * M_PI / 30;
+  const std::vector<SpectrumLine> sa = workpiece_spectrum(a, omega), sb = workpiece_spectrum(b, omega);
+  ASSERT_EQ(sa.size(), sb.size());
+  ASSERT_GT(sa.size(), 100u);
+  EXPECT_LT(rel(sb[0].normal_force_n, b.summary.mean_normal_force_n), 1e-12);
+  EXPECT_LT(rel(sb[0].hub_torque_n_m, b.summary.mean_hub_torque_n_m), 1e-12);
+  EXPECT_NEAR(sa[1].frequency_hz, omega / (2 * M_PI), 1e-12);
+  for (std::size_t h = 1; h < 60; ++h) {
+    if (h % 5 == 0) {
+      EXPECT_LT(rel(sb[h].normal_force_n, 5 * sa[h].normal_force_n), 1e-9) << h;
+    } else {
+      EXPECT_LT(sb[h].normal_force_n, 1e-9 * sb[0].normal_force_n) << h;
+    }
+  }
+}
+
+// The spread between seeds: √N·σ/|sum| of the filaments' own values, computed here from the
+// filament route's per-filament means (the clear ones as 0); zero without scatter. The roll-up's
+// counts against the filaments' own depths and validity.
+TEST(BrushSpread, TheSeedSpreadIsTheFilamentsStandardDeviation) {
+  std::vector<std::string> sets = kFast;
+  sets.insert(sets.end(), {"brush.filaments=24", "brush.length_scatter=0.05", "brush.seed=4"});
+  const BrushResult f = brush(sets, "filaments");
+  double sum = 0, sum2 = 0;
+  int barely = 0;
+  for (const BrushFilament& x : f.filaments) {
+    const double v = x.depth_fraction > 0 ? f.distinct[x.group].mean_normal_force_n : 0.0;
+    sum += v, sum2 += v * v;
+    barely += x.depth_fraction > 0 && x.depth_fraction < 0.25 * 0.03;
+  }
+  const double n = f.filaments.size(), var = (sum2 - sum * sum / n) / (n - 1);
+  EXPECT_LT(rel(f.summary.seed_spread_normal_force, std::sqrt(n * var) / sum), 1e-9);
+  EXPECT_EQ(f.summary.barely_reaching, barely);
+  std::vector<std::string> same = kFast;
+  same.push_back("brush.filaments=4");
+  EXPECT_EQ(brush(same, "filaments").summary.seed_spread_normal_force, 0.0);
 }

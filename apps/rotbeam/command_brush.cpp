@@ -76,6 +76,12 @@ void print_summary(const Config& config, const BrushResult& r, const std::string
               << ", hub torque " << number_text(p.hub_torque_error) << " (tolerance " << number_text(p.tolerance)
               << (p.converged ? ", met" : ", not met") << ")\n";
   }
+  if (s.seed_spread_normal_force > 0.0)
+    std::cout << "  another seed          mean normal force ± " << number_text(100.0 * s.seed_spread_normal_force)
+              << " %, hub torque ± " << number_text(100.0 * s.seed_spread_hub_torque) << " % (one standard deviation)\n";
+  if (s.at_edge_of_model + s.outside_model + s.barely_reaching > 0)
+    std::cout << "  filaments to watch    " << s.outside_model << " outside the model, " << s.at_edge_of_model
+              << " at its edge, " << s.barely_reaching << " barely reaching (own depth below a quarter of the nominal)\n";
   std::cout << "  wall time             " << fixed(s.wall_time_s, 2) << " s\n";
   for (const std::string& w : s.warnings) std::cout << "  warning: " << w << "\n";
   std::cout << "  wrote " << (std::filesystem::path(dir) / "workpiece.csv").string()

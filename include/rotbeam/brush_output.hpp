@@ -22,6 +22,19 @@ std::string profile_csv(const BrushResult& result, double omega);
 /// filaments.csv: one row per filament: its place, parameters and steady-state means.
 std::string filaments_csv(const BrushResult& result);
 
+/// One harmonic of the workpiece's force over the revolution: its order h (per revolution), its
+/// frequency h·Ω/2π [Hz] and the one-sided amplitudes 2|c_h| (the mean at h = 0) of the normal and
+/// tangential force [N] and the hub torque [N m], from the bins' momentum placed at their centres.
+struct SpectrumLine {
+  int order = 0;
+  double frequency_hz = 0, normal_force_n = 0, tangential_force_n = 0, hub_torque_n_m = 0;
+};
+std::vector<SpectrumLine> workpiece_spectrum(const BrushResult& result, double omega);
+
+/// spectrum.csv: workpiece_spectrum up to half the bin count, with each order as a multiple of the
+/// filament-passing frequency (orders over brush.filaments).
+std::string spectrum_csv(const BrushResult& result, double omega, int filaments_around);
+
 /// representatives.csv: the filaments the brush ran (its distinct filaments, or the population's
 /// representatives), what each stands for and its steady state's means.
 std::string representatives_csv(const BrushResult& result);

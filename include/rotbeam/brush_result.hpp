@@ -78,7 +78,8 @@ struct PopulationEstimate {
   double tolerance = 0;   // brush.population_tolerance
   bool converged = false; // the estimated errors are within the tolerance
   int rounds = 0;         // refinement rounds
-  int lengths = 0, diameters = 0;  // nodes of the grid in each direction (virtual zero-reach nodes included)
+  int lengths = 0, diameters = 0;  // nodes of the grid in each direction
+  int exact_filaments = 0;         // filaments run on their own (cells holding fewer than splitting them costs)
   // Estimated errors of the brush's sums relative to the filament-by-filament route over the same
   // filaments: the interpolation's change at its last refinement, summed in magnitude over the
   // cells; relative to the sum itself.
@@ -119,6 +120,15 @@ struct BrushSummary {
   // counted as the finished filament of the nearest depth fraction; 0 when none failed, NaN when no
   // filament finished.
   double missing_force_fraction = 0;
+  // How much the sums would differ for a brush drawn with another seed: √N·σ/|sum|, σ the standard
+  // deviation of the filaments' values over this brush (the filaments too short to reach count 0),
+  // relative to the sum; 0 without scatter.
+  double seed_spread_normal_force = 0, seed_spread_hub_torque = 0;
+  // The filaments the model describes least well: beyond simulation.deflection_warning_ratio (at the
+  // edge of the quadratic foreshortening, or outside the model), and those that barely reach the
+  // surface (their own depth below a quarter of the nominal one, where the force changes most from
+  // filament to filament).
+  int at_edge_of_model = 0, outside_model = 0, barely_reaching = 0;
   std::string error;                        // a filament whose run ended without a result, in words ("" for none)
   std::vector<std::string> warnings;
 };

@@ -314,7 +314,8 @@ class BrushResult:
     arrays by the columns of filaments.csv, one entry per filament), `wear_profile` (wear_profile.csv:
     the wear all the filaments leave along the surface per revolution, docs/wear.md) and
     `representatives` (representatives.csv: the filaments run, the distinct ones or a population's
-    representatives, with what each stands for). The tables are dicts of equal-length arrays:
+    representatives, with what each stands for) and `spectrum` (spectrum.csv: the workpiece's force
+    and torque by harmonic of the revolution). The tables are dicts of equal-length arrays:
     pandas.DataFrame(r.workpiece) makes a data frame of one."""
 
     summary: dict[str, Any]
@@ -323,21 +324,35 @@ class BrushResult:
     filaments: dict[str, "numpy.ndarray"]
     wear_profile: dict[str, "numpy.ndarray"]
     representatives: dict[str, "numpy.ndarray"]
+    spectrum: dict[str, "numpy.ndarray"]
 
     def __init__(self, summary: dict[str, Any], workpiece: dict[str, "numpy.ndarray"], profile: dict[str, "numpy.ndarray"],
                  filaments: dict[str, "numpy.ndarray"], wear_profile: dict[str, "numpy.ndarray"] | None = None,
-                 representatives: dict[str, "numpy.ndarray"] | None = None):
+                 representatives: dict[str, "numpy.ndarray"] | None = None,
+                 spectrum: dict[str, "numpy.ndarray"] | None = None):
         self.summary = summary
         self.workpiece = workpiece
         self.profile = profile
         self.filaments = filaments
         self.wear_profile = wear_profile if wear_profile is not None else {}
         self.representatives = representatives if representatives is not None else {}
+        self.spectrum = spectrum if spectrum is not None else {}
 
     @property
     def failure(self) -> dict[str, Any] | None:
         """None, or {kind, filament, t_s, theta_deg, message} of the first filament that failed."""
         return self.summary.get("failure")
+
+    def to_xarray(self) -> "xarray.Dataset":
+        """The brush as an xarray Dataset (needs xarray): the workpiece over `theta` (the bins'
+        centres, degrees; `workpiece_normal_force_n`, …), the mean filament's profile over `angle`
+        (`profile_<column>`), the filaments over `filament` (`filament_length_m`,
+        `filament_mean_normal_force_n`, …), the filaments run over `representative`, the spectrum
+        over `order` and the wear profile over `wear_bin`, each variable with its `units`.
+        Attributes: `summary` and `configuration` as JSON text, `failure`, `rotbeam_version`.
+        `ds.to_netcdf(path)` writes it (with netCDF4)."""
+        from ._xarray import brush_dataset
+        return brush_dataset(self, __version__)
 
     def __repr__(self):
         s = self.summary
@@ -358,10 +373,10 @@ def brush(config: ConfigLike = None, overrides: Overrides = None, jobs: int = 0)
     the others). Ctrl-C stops the filaments under way and raises KeyboardInterrupt."""
     jobs = _jobs(jobs)
     path, sets = _arguments(config, overrides)
-    summary, workpiece, profile, filaments, wear, representatives = _core.brush(path, sets, jobs)
+    summary, workpiece, profile, filaments, wear, representatives, spectrum = _core.brush(path, sets, jobs)
     return BrushResult(summary, _table_arrays(workpiece, "workpiece.csv"), _table_arrays(profile, "profile.csv"),
                        _table_arrays(filaments, "filaments.csv"), _table_arrays(wear, "wear_profile.csv"),
-                       _table_arrays(representatives, "representatives.csv"))
+                       _table_arrays(representatives, "representatives.csv"), _table_arrays(spectrum, "spectrum.csv"))
 
 
 class WearResult:

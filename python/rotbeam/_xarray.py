@@ -115,6 +115,44 @@ def result_dataset(result: Any, version: str, every_row: bool = False) -> xr.Dat
     return xr.Dataset(variables, coords=coords, attrs=attrs)
 
 
+def brush_dataset(result: Any, version: str) -> xr.Dataset:
+    """A brush's Dataset: the workpiece over `theta` (the bins' centres in degrees; every column of
+    workpiece.csv a variable `workpiece_<column>`), the mean filament's profile over `angle`
+    (`profile_<column>`), the filaments over `filament` (`filament_<column>`, one entry each), the
+    filaments run over `representative` (`representative_<column>`), the spectrum over `order`
+    (`spectrum_<column>`) and the wear profile over `wear_bin` (`wear_<column>`); attributes: the
+    summary and the resolved configuration as JSON, the version."""
+    variables = {}
+    coords = {}
+
+    def centres(table):
+        return 0.5 * (np.asarray(table["theta_from_deg"], float) + np.asarray(table["theta_to_deg"], float))
+
+    for table, dim, prefix in ((result.workpiece, "theta", "workpiece_"), (result.profile, "angle", "profile_")):
+        if table:
+            coords[dim] = xr.Variable((dim,), centres(table), {"units": "degree", "long_name": "the bin's centre"})
+            for name, values in table.items():
+                key, var = _column(name, values, dim, prefix)
+                variables[key] = var
+    for table, dim, prefix, index in ((result.filaments, "filament", "filament_", "filament"),
+                                      (result.representatives, "representative", "representative_", "representative"),
+                                      (result.spectrum, "order", "spectrum_", "order"),
+                                      (result.wear_profile, "wear_bin", "wear_", None)):
+        if not table:
+            continue
+        for name, values in table.items():
+            if name == index:
+                coords[dim] = xr.Variable((dim,), np.asarray(values), {"units": "1"})
+                continue
+            key, var = _column(name, values, dim, prefix)
+            variables[key] = var
+    summary = result.summary
+    attrs = {"title": "rotbeam brush", "rotbeam_version": version,
+             "configuration": json.dumps(summary.get("config", {}), sort_keys=True),
+             "summary": json.dumps(summary, sort_keys=True), "failure": json.dumps(summary.get("failure"))}
+    return xr.Dataset(variables, coords=coords, attrs=attrs)
+
+
 def _literal_value(text: str) -> Any:
     """A TOML literal's value (a bare word, which --set takes as a string, is itself)."""
     try:

@@ -35,11 +35,45 @@ def read_brush(folder):
     return (summary, *tables)
 
 
-def read_representatives(folder, summary):
-    """representatives.csv of a brush folder, or None where the summary lists none (older folders)."""
-    if "representatives.csv" not in summary.get("files", {}):
+def read_listed(folder, summary, name):
+    """A table of a brush folder that older folders lack (representatives.csv, spectrum.csv), or None
+    where the summary does not list it."""
+    if name not in summary.get("files", {}):
         return None
-    return read_csv(Path(folder) / "representatives.csv", error=DamagedBrush)
+    return read_csv(Path(folder) / name, error=DamagedBrush)
+
+
+def spectrum_figure(summary, spectrum):
+    """brush_spectrum.png: the amplitudes of the workpiece's normal force and of the hub torque by
+    harmonic of the revolution, with the multiples of brush.filaments (the filaments around the
+    hub) marked: identical, equally spaced filaments put their force there."""
+    around = summary["config"]["brush"]["filaments"]
+    order = np.asarray(spectrum["order"])
+    shown = order <= max(8 * around, 40)
+    fig, axes = plt.subplots(2, 1, figsize=(11, 7.5), sharex=True)
+    for ax, column, label in ((axes[0], "normal_force_n", "normal force amplitude (N)"),
+                              (axes[1], "hub_torque_n_m", "hub torque amplitude (N m)")):
+        amplitude = np.asarray(spectrum[column])
+        ax.vlines(order[shown][1:], 0, amplitude[shown][1:], color="C0", lw=1.2, label="harmonic of the revolution")
+        top = np.max(amplitude[shown][1:]) if np.any(shown[1:]) else 0.0
+        for k in range(1, int(order[shown].max() // around) + 1):
+            ax.axvline(k * around, color="C3", lw=0.6, ls=":",
+                       label=f"multiple of brush.filaments = {around}" if k == 1 else None)
+        ax.set_ylabel(label)
+        ax.set_ylim(0, 1.1 * top if top > 0 else 1)
+        ax.grid(alpha=0.3)
+        ax.set_title(f"mean (order 0): {amplitude[0]:.4g}", fontsize=9, loc="right")
+        if around > order.max():
+            ax.set_title(f"brush.filaments = {around} is beyond the bins' highest order ({order.max()}): "
+                         "a finer output.bin_deg resolves it", fontsize=8, loc="left")
+    handles, labels = axes[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="upper center", ncol=2, fontsize=8, bbox_to_anchor=(0.5, 0.925))
+    revolution_hz = spectrum["frequency_hz"][1] if len(order) > 1 else 0.0
+    axes[1].set_xlabel(f"harmonic of the revolution (1) — × {revolution_hz:.4g} Hz")
+    fig.suptitle(_title(summary) + "\nthe workpiece's force and the hub torque by harmonic of the revolution",
+                 fontsize=10)
+    fig.tight_layout(rect=(0, 0, 1, 0.9))
+    return fig
 
 
 def _title(summary):
@@ -152,10 +186,14 @@ def filaments_figure(summary, filaments, representatives=None):
 def brush_figures(folder):
     """[(name, figure)] of a brush folder, every file read and checked before any is drawn."""
     summary, workpiece, profile, filaments = read_brush(folder)
-    representatives = read_representatives(folder, summary)
-    return draw_all((("brush_force", lambda: force_figure(summary, workpiece)),
-                     ("brush_profile", lambda: profile_figure(summary, profile)),
-                     ("brush_filaments", lambda: filaments_figure(summary, filaments, representatives))))
+    representatives = read_listed(folder, summary, "representatives.csv")
+    spectrum = read_listed(folder, summary, "spectrum.csv")
+    figures = [("brush_force", lambda: force_figure(summary, workpiece)),
+               ("brush_profile", lambda: profile_figure(summary, profile)),
+               ("brush_filaments", lambda: filaments_figure(summary, filaments, representatives))]
+    if spectrum is not None:
+        figures.append(("brush_spectrum", lambda: spectrum_figure(summary, spectrum)))
+    return draw_all(tuple(figures))
 
 
 # brush_map.png of a sweep over brushes (rotbeam.sweep_plots.metrics_figure draws it as the sweep's

@@ -9,6 +9,7 @@
 #include "rotbeam/units.hpp"
 
 #include <charconv>
+#include <complex>
 #include <cmath>
 
 namespace rotbeam {
@@ -19,9 +20,9 @@ void put(std::string& out, double v) { detail::append_number(out, v); }
 
 nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
-constexpr const char* kFiles[] = {"workpiece.csv", "profile.csv", "filaments.csv", "representatives.csv", "wear_profile.csv",
-                                  "summary.json"};
-constexpr const char* kPictures[] = {"brush_force.png", "brush_profile.png", "brush_filaments.png"};
+constexpr const char* kFiles[] = {"workpiece.csv", "profile.csv", "filaments.csv", "representatives.csv", "spectrum.csv",
+                                  "wear_profile.csv", "summary.json"};
+constexpr const char* kPictures[] = {"brush_force.png", "brush_profile.png", "brush_filaments.png", "brush_spectrum.png"};
 
 }  // namespace
 
@@ -117,6 +118,41 @@ std::string representatives_csv(const BrushResult& result) {
   return out;
 }
 
+std::vector<SpectrumLine> workpiece_spectrum(const BrushResult& result, double omega) {
+  const std::vector<ForceBin>& bins = result.workpiece;
+  const double period = 2.0 * M_PI / omega;
+  const int orders = static_cast<int>(bins.size()) / 2;
+  std::vector<SpectrumLine> out;
+  out.reserve(orders + 1);
+  for (int h = 0; h <= orders; ++h) {
+    std::complex<double> n, t, q;
+    for (const ForceBin& b : bins) {
+      const double centre = (0.5 * (b.from_deg + b.to_deg)) * M_PI / 180.0;
+      const std::complex<double> e = std::polar(1.0, -h * centre);
+      n += b.normal_impulse_n_s * e;
+      t += b.tangential_impulse_n_s * e;
+      q += b.hub_angular_impulse_n_m_s * e;
+    }
+    const double scale = (h == 0 ? 1.0 : 2.0) / period;  // one-sided amplitudes; the mean at order 0
+    out.push_back({h, h / period, scale * std::abs(n), scale * std::abs(t), scale * std::abs(q)});
+  }
+  return out;
+}
+
+std::string spectrum_csv(const BrushResult& result, double omega, int filaments_around) {
+  std::string out = csv_header(output_file("spectrum.csv"), 0) + "\n";
+  for (const SpectrumLine& l : workpiece_spectrum(result, omega)) {
+    out += std::to_string(l.order) + ',';
+    for (double v : {l.frequency_hz, static_cast<double>(l.order) / std::max(1, filaments_around), l.normal_force_n,
+                     l.tangential_force_n, l.hub_torque_n_m}) {
+      put(out, v);
+      out += ',';
+    }
+    out.back() = '\n';
+  }
+  return out;
+}
+
 WearReport brush_wear_report(const BrushResult& result, const Config& config) {
   WearReport w;
   w.revolutions = 1;
@@ -144,6 +180,7 @@ nlohmann::json brush_summary_json(const BrushResult& result, const Config& confi
                        {"representatives", s.distinct_filaments},
                        {"length_nodes", p.lengths},
                        {"diameter_nodes", p.diameters},
+                       {"exact_filaments", p.exact_filaments},
                        {"estimated_error",
                         {{"mean_normal_force", p.normal_force_error},
                          {"mean_tangential_force", p.tangential_force_error},
@@ -166,6 +203,16 @@ nlohmann::json brush_summary_json(const BrushResult& result, const Config& confi
     j["failed_filament_list"] = list;
   }
   j["missing_force_fraction"] = number_or_null(s.missing_force_fraction);
+  j["seed_spread"] = {{"mean_normal_force", s.seed_spread_normal_force},
+                      {"mean_hub_torque", s.seed_spread_hub_torque},
+                      {"note", "the standard deviation, relative to the sum, between brushes drawn with other seeds, "
+                               "estimated from this brush's filaments (sqrt(N)·σ/|sum|)"}};
+  j["roll_up"] = {{"at_edge_of_model", s.at_edge_of_model},
+                  {"outside_model", s.outside_model},
+                  {"barely_reaching", s.barely_reaching},
+                  {"clear", s.filaments - s.reaching},
+                  {"note", "filaments by the validity of their run (docs/model.md §10), those whose own depth is below a "
+                           "quarter of the nominal one, and those that do not reach"}};
   j["revolution_period_s"] = s.revolution_period_s;
   j["mean_normal_force_n"] = s.mean_normal_force_n;
   j["mean_tangential_force_n"] = s.mean_tangential_force_n;
@@ -223,7 +270,9 @@ void BrushFiles::commit(const BrushResult& result, const Config& config) {
   const std::string profile = profile_csv(result, omega);
   const std::string filaments = filaments_csv(result);
   const std::string representatives = representatives_csv(result);
+  const std::string spectrum = spectrum_csv(result, omega, config.brush ? config.brush->filaments : 1);
   write_file_atomically(dir_ / "workpiece.csv", workpiece);
+  write_file_atomically(dir_ / "spectrum.csv", spectrum);
   write_file_atomically(dir_ / "representatives.csv", representatives);
   write_file_atomically(dir_ / "profile.csv", profile);
   write_file_atomically(dir_ / "filaments.csv", filaments);
@@ -234,6 +283,7 @@ void BrushFiles::commit(const BrushResult& result, const Config& config) {
                 {"profile.csv", {{"bytes", profile.size()}}},
                 {"filaments.csv", {{"bytes", filaments.size()}}},
                 {"representatives.csv", {{"bytes", representatives.size()}}},
+                {"spectrum.csv", {{"bytes", spectrum.size()}}},
                 {"wear_profile.csv", {{"bytes", wear.size()}}}};
   write_file_atomically(dir_ / "summary.json", j.dump(2) + "\n");
 }

@@ -187,6 +187,14 @@ std::vector<OutputFile> make_files() {
         number("last_contact_deg", "degree", "relative angle of its last"),
         number("ledger_residual_j", "J", "the largest residual of its ledger per revolution")}});
   files.push_back(
+      {"spectrum.csv",
+       {integer("order", "the harmonic of the revolution, 0 …"),
+        number("frequency_hz", "Hz", "order times the revolution's frequency"),
+        number("passing_multiple", "1", "order over brush.filaments: whole numbers are the filament-passing frequency's multiples"),
+        number("normal_force_n", "N", "amplitude of the workpiece's normal force at this order (the mean at order 0)"),
+        number("tangential_force_n", "N", "amplitude of its tangential force"),
+        number("hub_torque_n_m", "N m", "amplitude of the hub torque")}});
+  files.push_back(
       {"representatives.csv",
        {integer("representative", "the filament run, 1 … (filaments.csv's distinct)"),
         number("length_m", "m", "its length"),

@@ -276,6 +276,33 @@ void finish_brush(BrushResult& result, const Config& config, const ForceBins& to
   }
   s.mean_hub_power_w = s.mean_hub_torque_n_m * omega;
   s.missing_force_fraction = missing_force_fraction(result);
+  // The spread between seeds and the roll-up, filament by filament (the population's interpolated values).
+  {
+    const bool estimated = !result.estimates.empty();
+    double sum_n = 0, sum_nn = 0, sum_t = 0, sum_tt = 0;
+    int counted = 0;
+    const double barely = 0.25 * config.surface.depth_fraction;
+    for (const BrushFilament& f : result.filaments) {
+      const FilamentSteadyState& d = result.distinct[f.group];
+      if (d.reaches && !d.ran) continue;  // failed: neither value nor spread
+      const bool reaches = f.depth_fraction > 0.0;
+      const double n = !reaches ? 0.0 : estimated ? result.estimates[f.index].mean_normal_force_n : d.mean_normal_force_n;
+      const double t = !reaches ? 0.0 : estimated ? result.estimates[f.index].mean_hub_torque_n_m : d.mean_hub_torque_n_m;
+      sum_n += n, sum_nn += n * n, sum_t += t, sum_tt += t * t;
+      ++counted;
+      if (!reaches) continue;
+      s.at_edge_of_model += d.validity == Validity::edge;
+      s.outside_model += d.validity == Validity::outside;
+      s.barely_reaching += f.depth_fraction < barely;
+    }
+    if (counted > 1) {
+      const double k = counted;
+      const double var_n = std::max(0.0, (sum_nn - sum_n * sum_n / k) / (k - 1));
+      const double var_t = std::max(0.0, (sum_tt - sum_t * sum_t / k) / (k - 1));
+      s.seed_spread_normal_force = sum_n != 0.0 ? std::sqrt(k * var_n) / std::abs(sum_n) : 0.0;
+      s.seed_spread_hub_torque = sum_t != 0.0 ? std::sqrt(k * var_t) / std::abs(sum_t) : 0.0;
+    }
+  }
   // The wear along the surface: every finished filament's profile, summed (docs/wear.md).
   result.wear_profile = rebin(wear_profiles, wear_weights, config.simulation.wear_profile_bins, result.wear_period);
   if (std::isfinite(s.contact_zone_from_deg)) s.contact_zone_deg = s.contact_zone_to_deg - s.contact_zone_from_deg;

@@ -85,6 +85,24 @@ struct Axis {
   }
 };
 
+// A cell marked for refinement: its share of the estimate, where it is, and the filaments inside it
+// that are interpolated (not run on their own).
+struct Mark {
+  double eta = 0;
+  int axis = 0;
+  std::size_t cell = 0;
+  int filaments = 0;
+};
+
+// A refinement the marking may take: split a cell (axis 0 or 1) or run one filament on its own
+// (axis −1, `cell` its index), with the share of the estimate it addresses and what it costs in runs.
+struct Action {
+  double benefit = 0;
+  int cost = 1;
+  int axis = 0;
+  std::size_t cell = 0;
+};
+
 // The quantities the refinement watches: mean normal force, tangential force and hub torque.
 constexpr int kWatched = 3;
 using Watched = std::array<double, kWatched>;
@@ -151,7 +169,14 @@ private:
     return v;
   }
   // One refinement round's indicators; true when the estimate meets the tolerance.
-  bool estimate(std::vector<std::pair<double, std::pair<int, std::size_t>>>& marks);
+  bool estimate(std::vector<Mark>& marks);
+  // The filament's values: its own run's where it was run on its own, else interpolated.
+  Watched value_of(const BrushFilament& f) const {
+    const int own = exact_node_[f.index];
+    return own >= 0 ? value(own) : interpolate(f.length_m, f.diameter_m);
+  }
+  // Runs one filament on its own (its values then its own, not interpolated).
+  void run_filament(const BrushFilament& f);
   void assemble();
 
   const Config& config_;
@@ -163,6 +188,8 @@ private:
   std::map<std::pair<double, double>, int> index_;
   std::vector<int> pending_;
   std::vector<const BrushFilament*> reaching_, by_length_, by_diameter_;
+  std::vector<int> exact_node_;       // by filament index: the node of its own run, or −1 (interpolated)
+  std::vector<double> contribution_;  // by filament index: its share of the last estimate (Σ over its cells)
   PopulationEstimate estimate_;
   BrushProgress progress_;
 };
@@ -242,14 +269,26 @@ void Population::fill_sources() {
   }
 }
 
-bool Population::estimate(std::vector<std::pair<double, std::pair<int, std::size_t>>>& marks) {
+void Population::run_filament(const BrushFilament& f) {
+  if (exact_node_[f.index] >= 0) return;
+  Node n;
+  n.length_m = f.length_m;
+  n.diameter_m = f.diameter_m;
+  nodes_.push_back(std::move(n));
+  exact_node_[f.index] = static_cast<int>(nodes_.size()) - 1;
+  pending_.push_back(exact_node_[f.index]);
+  ++estimate_.exact_filaments;
+}
+
+bool Population::estimate(std::vector<Mark>& marks) {
   Watched sum{};
   for (const BrushFilament* f : reaching_) {
-    const Watched v = interpolate(f->length_m, f->diameter_m);
+    const Watched v = value_of(*f);
     for (int q = 0; q < kWatched; ++q) sum[q] += v[q];
   }
   Watched error{};
   marks.clear();
+  std::fill(contribution_.begin(), contribution_.end(), 0.0);
   const auto scale = [&](int q) { return std::max(std::abs(sum[q]), 1e-300); };
   for (int axis = 0; axis < 2; ++axis) {
     const Axis& ax = axis == 0 ? lengths_ : diameters_;
@@ -263,15 +302,24 @@ bool Population::estimate(std::vector<std::pair<double, std::pair<int, std::size
       const auto key = [axis](const BrushFilament* f) { return axis == 0 ? f->length_m : f->diameter_m; };
       auto it = std::upper_bound(sorted.begin(), sorted.end(), cell.a,
                                  [&](double v, const BrushFilament* f) { return v < key(f); });
+      int inside = 0;
       for (; it != sorted.end() && key(*it) < cell.b; ++it) {
         const BrushFilament* f = *it;
+        if (exact_node_[f->index] >= 0) continue;  // run on its own: nothing to interpolate
+        ++inside;
         const double x = key(f);
         const double hat = 1.0 - std::abs(x - cell.m) / half;
         const auto at = [&](double node) {
           return axis == 0 ? interpolate(node, f->diameter_m) : interpolate(f->length_m, node);
         };
         const Watched gm = at(cell.m), ga = at(cell.a), gb = at(cell.b);
-        for (int q = 0; q < kWatched; ++q) delta[q] += hat * (gm[q] - 0.5 * (ga[q] + gb[q]));
+        double own = 0;
+        for (int q = 0; q < kWatched; ++q) {
+          const double d = hat * (gm[q] - 0.5 * (ga[q] + gb[q]));
+          delta[q] += d;
+          if (q != 1) own = std::max(own, std::abs(d) / scale(q));
+        }
+        contribution_[f->index] += own;
       }
       double eta = 0;
       for (int q = 0; q < kWatched; ++q) {
@@ -279,7 +327,7 @@ bool Population::estimate(std::vector<std::pair<double, std::pair<int, std::size
         if (q != 1) eta = std::max(eta, std::abs(delta[q]) / scale(q));  // the tangential force is not steered on
       }
       const double width = (cell.b - cell.a) / (axis == 0 ? config_.beam.length_m : config_.beam.diameter_m);
-      if (eta > 0.0 && width > 1e-9) marks.push_back({eta, {axis, c}});
+      if (eta > 0.0 && width > 1e-9) marks.push_back({eta, axis, c, inside});
     }
   }
   estimate_.normal_force_error = error[0] / scale(0);
@@ -297,6 +345,8 @@ void Population::run() {
     f.group = 0;
     if (f.depth_fraction > 0.0) reaching_.push_back(&f);
   }
+  exact_node_.assign(result_.filaments.size(), -1);
+  contribution_.assign(result_.filaments.size(), 0.0);
   by_length_ = by_diameter_ = reaching_;
   std::stable_sort(by_length_.begin(), by_length_.end(),
                    [](const BrushFilament* a, const BrushFilament* b) { return a->length_m < b->length_m; });
@@ -313,7 +363,7 @@ void Population::run() {
     diameters_ = Axis::over(d_lo, d_hi, 1);
     add_grid();
     run_pending();
-    std::vector<std::pair<double, std::pair<int, std::size_t>>> marks;
+    std::vector<Mark> marks;
     for (;;) {
       if (options_.stop && options_.stop->stop_requested()) break;
       ++estimate_.rounds;
@@ -321,22 +371,38 @@ void Population::run() {
         estimate_.converged = true;
         break;
       }
-      std::sort(marks.begin(), marks.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+      // Dörfler's marking within the budget, by what each action addresses per run: a cell split (its
+      // two halves' midpoints run along every line of the other axis), or one filament run on its
+      // own — where a few filaments hold a cell's error (the force's spike where a filament barely
+      // reaches) running them costs less than splitting the cell round them.
       double total = 0;
-      for (const auto& m : marks) total += m.first;
-      // Dörfler's marking within the budget: the cells holding half of the estimate, largest first.
+      std::vector<Action> actions;
+      for (const Mark& m : marks) {
+        total += m.eta;
+        actions.push_back({m.eta, 2 * static_cast<int>(m.axis == 0 ? diameters_.nodes.size() : lengths_.nodes.size()),
+                           m.axis, m.cell});
+      }
+      for (const BrushFilament* f : reaching_)
+        if (contribution_[f->index] > 0.0) actions.push_back({contribution_[f->index], 1, -1, static_cast<std::size_t>(f->index)});
+      std::stable_sort(actions.begin(), actions.end(), [](const Action& x, const Action& y) {
+        return x.benefit * y.cost > y.benefit * x.cost;
+      });
       std::vector<std::pair<int, std::size_t>> split;
+      std::vector<std::size_t> alone;
       double taken = 0;
-      int runs = real_runs();
-      for (const auto& [eta, where] : marks) {
-        const int cost = 2 * static_cast<int>(where.first == 0 ? diameters_.nodes.size() : lengths_.nodes.size());
-        if (runs + cost > b.population_max_runs) continue;  // a cheaper cell may still fit
-        runs += cost;
-        split.push_back(where);
-        taken += eta;
+      int runs = real_runs(), split_axis = -1;
+      for (const Action& a : actions) {
+        if (runs + a.cost > b.population_max_runs) continue;  // a cheaper action may still fit
+        // Splits along both axes in one round would also run their crossings: one axis a round.
+        if (a.axis >= 0 && split_axis >= 0 && a.axis != split_axis) continue;
+        if (a.axis >= 0) split_axis = a.axis;
+        runs += a.cost;
+        (a.axis < 0 ? alone.push_back(a.cell) : split.push_back({a.axis, a.cell}));
+        taken += a.benefit;
         if (taken >= 0.5 * total) break;
       }
-      if (split.empty()) break;  // the budget is spent
+      if (split.empty() && alone.empty()) break;  // the budget is spent
+      for (const std::size_t k : alone) run_filament(result_.filaments[k]);
       // Split the highest cell indices first so that earlier indices stay valid.
       std::sort(split.begin(), split.end(), [](const auto& x, const auto& y) { return x > y; });
       for (const auto& [axis, c] : split) (axis == 0 ? lengths_ : diameters_).split(c);
@@ -389,7 +455,10 @@ void Population::assemble() {
     int nearest = -1;
     double nearest_w = -1;
     const int cell = static_cast<int>(std::lround(f.phase_deg / cell_deg)) % cells;
-    for (const auto& [node, w] : weights(f.length_m, f.diameter_m)) {
+    const int own = exact_node_[f.index];
+    std::array<std::pair<int, double>, 4> weights_of = own >= 0 ? std::array<std::pair<int, double>, 4>{{{own, 1.0}, {own, 0.0}, {own, 0.0}, {own, 0.0}}}
+                                                                : weights(f.length_m, f.diameter_m);
+    for (const auto& [node, w] : weights_of) {
       if (w == 0.0) continue;
       if (!nodes_[node].zero && w > nearest_w) nearest = node, nearest_w = w;
       result_.run[node].weight += w;

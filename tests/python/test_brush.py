@@ -72,7 +72,7 @@ def test_files_read_as_the_python_result(brush_folder):
 
 def test_pictures_have_data_in_every_panel(brush_folder, tmp_path):
     figures = brush_plots.brush_figures(brush_folder)
-    assert [name for name, _ in figures] == ["brush_force", "brush_profile", "brush_filaments"]
+    assert [name for name, _ in figures] == ["brush_force", "brush_profile", "brush_filaments", "brush_spectrum"]
     for name, fig in figures:
         for ax in fig.axes:
             # Units on every axis (a panel sharing its x axis with the one below has it there).
@@ -91,7 +91,7 @@ def test_pictures_have_data_in_every_panel(brush_folder, tmp_path):
     done = subprocess.run([CLI, "plot", str(brush_folder), "-o", str(tmp_path / "pics")], capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
     assert sorted(p.name for p in (tmp_path / "pics").iterdir()) == [
-        "brush_filaments.png", "brush_force.png", "brush_profile.png"]
+        "brush_filaments.png", "brush_force.png", "brush_profile.png", "brush_spectrum.png"]
 
 
 def test_a_damaged_brush_is_named_and_nothing_is_drawn(brush_folder, tmp_path):
@@ -140,3 +140,20 @@ def test_a_population_from_python_matches_its_representatives():
     assert np.sum(b.filaments["mean_normal_force_n"]) == pytest.approx(s["mean_normal_force_n"], rel=1e-9)
     assert 0 < s["population"]["estimated_error"]["mean_normal_force"] < 1
     assert "representatives" in repr(b)
+
+
+def test_a_brush_as_an_xarray_dataset():
+    # BrushResult.to_xarray: every table on its dimension with units, the same numbers as the tables.
+    xr = pytest.importorskip("xarray")
+    b = rotbeam.brush(overrides={"beam.modes": 3, "beam.damping_ratio": 0.1, "brush.filaments": 6,
+                                 "brush.length_scatter": 0.01, "brush.phase_jitter_deg": 2}, jobs=2)
+    ds = b.to_xarray()
+    assert isinstance(ds, xr.Dataset)
+    assert ds.sizes["theta"] == 720 and ds.sizes["filament"] == 6 and ds.sizes["order"] == 361
+    assert ds["workpiece_normal_force_n"].attrs["units"] == "N"
+    assert ds["filament_length_m"].attrs["units"] == "m"
+    assert ds["spectrum_frequency_hz"].attrs["units"] == "Hz"
+    np.testing.assert_array_equal(ds["filament_mean_normal_force_n"].values, b.filaments["mean_normal_force_n"])
+    assert float(ds["theta"][0]) == pytest.approx(-179.75)
+    assert float(ds["spectrum_normal_force_n"].sel(order=0)) == pytest.approx(b.summary["mean_normal_force_n"], rel=1e-12)
+    assert json.loads(ds.attrs["summary"])["filaments"] == 6
