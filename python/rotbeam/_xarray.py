@@ -68,6 +68,14 @@ def _column(name: str, values: Any, dim: str, prefix: str = "") -> tuple[str, xr
     return prefix + name, xr.Variable((dim,), a, attrs)
 
 
+def _result_attrs(title: str, summary: Mapping[str, Any], version: str) -> dict[str, str]:
+    """A result's Dataset attributes: its title, the version, the resolved configuration, the summary
+    and the failure as JSON text."""
+    return {"title": title, "rotbeam_version": version,
+            "configuration": json.dumps(summary.get("config", {}), sort_keys=True),
+            "summary": json.dumps(summary, sort_keys=True), "failure": json.dumps(summary.get("failure"))}
+
+
 def result_dataset(result: Any, version: str, every_row: bool = False) -> xr.Dataset:
     """A pass's Dataset: the history over `t` (seconds; every other column of history.csv a variable
     with its units), the events over `event` (variables `event_<column>`), the revolutions over
@@ -108,11 +116,7 @@ def result_dataset(result: Any, version: str, every_row: bool = False) -> xr.Dat
     for name, values in result.force_bins.items():
         key, var = _column(name, values, "bin", "bin_")
         variables[key] = var
-    summary = result.summary
-    attrs = {"title": "rotbeam pass", "rotbeam_version": version,
-             "configuration": json.dumps(summary.get("config", {}), sort_keys=True),
-             "summary": json.dumps(summary, sort_keys=True), "failure": json.dumps(summary.get("failure"))}
-    return xr.Dataset(variables, coords=coords, attrs=attrs)
+    return xr.Dataset(variables, coords=coords, attrs=_result_attrs("rotbeam pass", result.summary, version))
 
 
 def brush_dataset(result: Any, version: str) -> xr.Dataset:
@@ -146,11 +150,7 @@ def brush_dataset(result: Any, version: str) -> xr.Dataset:
                 continue
             key, var = _column(name, values, dim, prefix)
             variables[key] = var
-    summary = result.summary
-    attrs = {"title": "rotbeam brush", "rotbeam_version": version,
-             "configuration": json.dumps(summary.get("config", {}), sort_keys=True),
-             "summary": json.dumps(summary, sort_keys=True), "failure": json.dumps(summary.get("failure"))}
-    return xr.Dataset(variables, coords=coords, attrs=attrs)
+    return xr.Dataset(variables, coords=coords, attrs=_result_attrs("rotbeam brush", result.summary, version))
 
 
 def _literal_value(text: str) -> Any:

@@ -359,7 +359,7 @@ std::vector<Key> make_table() {
   t.push_back(plain("brush.population_tolerance", "", one(inside(0, 1)),
                     "a brush by population: the relative error of the mean force and torque it refines to",
                     [](auto& c) -> auto& { return brush_of(c).population_tolerance; }, brush));
-  t.push_back(plain("brush.population_max_runs", "", one(integers(4, 100000)),
+  t.push_back(plain("brush.population_max_runs", "", one(integers(15, 100000)),
                     "a brush by population: the most representative filaments it runs",
                     [](auto& c) -> auto& { return brush_of(c).population_max_runs; }, brush));
   t.push_back(plain("compat.thesis_forces", "", one(boolean()),

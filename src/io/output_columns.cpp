@@ -161,18 +161,8 @@ std::vector<OutputFile> make_files() {
   profile.name = "profile.csv";
   files.push_back(profile);
 
-  files.push_back(
-      {"filaments.csv",
-       {integer("filament", "its index, 1 …"),
-        integer("row", "its row, 1 …"),
-        integer("position", "its place in the row, 1 …"),
-        number("phase_deg", "degree", "how far ahead of the reference filament it sits"),
-        number("length_m", "m", "its length"),
-        number("diameter_m", "m", "its diameter"),
-        number("depth_fraction", "1", "its own depth over its length"),
-        integer("distinct", "the distinct filament it is a copy of (by population: its nearest representative), 1 …"),
-        {"reaches", "", ColumnKind::boolean, "its tip reaches the surface", {}},
-        {"status", "", ColumnKind::word, "how its run ended", filament_status_words()},
+  // A filament's steady state per revolution, as filaments.csv and representatives.csv give it.
+  const std::vector<OutputColumn> steady_means = {
         integer("period_revolutions", "its orbit's period"),
         integer("revolutions_run", "revolutions run"),
         number("mean_normal_force_n", "N", "normal impulse per revolution over the period"),
@@ -182,10 +172,24 @@ std::vector<OutputFile> make_files() {
         number("impacts_per_revolution", "1", "impacts per revolution"),
         number("contact_time_s", "s", "contact time per revolution"),
         number("peak_normal_force_n", "N", "largest normal force over the orbit"),
-        number("max_tip_deflection_ratio", "1", "largest |y_t|/L over the orbit"),
-        number("first_contact_deg", "degree", "relative angle of its first delivery of momentum"),
-        number("last_contact_deg", "degree", "relative angle of its last"),
-        number("ledger_residual_j", "J", "the largest residual of its ledger per revolution")}});
+        number("max_tip_deflection_ratio", "1", "largest |y_t|/L over the orbit")};
+  OutputFile filaments{"filaments.csv",
+                       {integer("filament", "its index, 1 …"),
+                        integer("row", "its row, 1 …"),
+                        integer("position", "its place in the row, 1 …"),
+                        number("phase_deg", "degree", "how far ahead of the reference filament it sits"),
+                        number("length_m", "m", "its length"),
+                        number("diameter_m", "m", "its diameter"),
+                        number("depth_fraction", "1", "its own depth over its length"),
+                        integer("distinct", "the distinct filament it is a copy of (by population: its nearest representative), 1 …"),
+                        {"reaches", "", ColumnKind::boolean, "its tip reaches the surface", {}},
+                        {"status", "", ColumnKind::word, "how its run ended", filament_status_words()}}};
+  filaments.columns.insert(filaments.columns.end(), steady_means.begin(), steady_means.end());
+  for (const OutputColumn& c : {number("first_contact_deg", "degree", "relative angle of its first delivery of momentum"),
+                                number("last_contact_deg", "degree", "relative angle of its last"),
+                                number("ledger_residual_j", "J", "the largest residual of its ledger per revolution")})
+    filaments.columns.push_back(c);
+  files.push_back(filaments);
   files.push_back(
       {"spectrum.csv",
        {integer("order", "the harmonic of the revolution, 0 …"),
@@ -194,25 +198,17 @@ std::vector<OutputFile> make_files() {
         number("normal_force_n", "N", "amplitude of the workpiece's normal force at this order (the mean at order 0)"),
         number("tangential_force_n", "N", "amplitude of its tangential force"),
         number("hub_torque_n_m", "N m", "amplitude of the hub torque")}});
-  files.push_back(
-      {"representatives.csv",
-       {integer("representative", "the filament run, 1 … (filaments.csv's distinct)"),
-        number("length_m", "m", "its length"),
-        number("diameter_m", "m", "its diameter"),
-        number("depth_fraction", "1", "its own depth over its length"),
-        number("weight", "1", "the filaments it stands for: its copies, or by population the sum of their interpolation weights"),
-        integer("nearest", "the filaments of which it is the nearest (its copies)"),
-        {"status", "", ColumnKind::word, "how its run ended", filament_status_words()},
-        integer("period_revolutions", "its orbit's period"),
-        integer("revolutions_run", "revolutions run"),
-        number("mean_normal_force_n", "N", "normal impulse per revolution over the period"),
-        number("mean_tangential_force_n", "N", "tangential impulse per revolution over the period"),
-        number("mean_hub_torque_n_m", "N m", "hub work per revolution over 2π"),
-        number("mean_hub_power_w", "W", "hub work per revolution over the period"),
-        number("impacts_per_revolution", "1", "impacts per revolution"),
-        number("contact_time_s", "s", "contact time per revolution"),
-        number("peak_normal_force_n", "N", "largest normal force over the orbit"),
-        number("max_tip_deflection_ratio", "1", "largest |y_t|/L over the orbit")}});
+  OutputFile representatives{
+      "representatives.csv",
+      {integer("representative", "the filament run, 1 … (filaments.csv's distinct)"),
+       number("length_m", "m", "its length"),
+       number("diameter_m", "m", "its diameter"),
+       number("depth_fraction", "1", "its own depth over its length"),
+       number("weight", "1", "the filaments it stands for: its copies, or by population the sum of their interpolation weights"),
+       integer("nearest", "the filaments of which it is the nearest (its copies)"),
+       {"status", "", ColumnKind::word, "how its run ended", filament_status_words()}}};
+  representatives.columns.insert(representatives.columns.end(), steady_means.begin(), steady_means.end());
+  files.push_back(representatives);
   return files;
 }
 

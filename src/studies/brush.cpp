@@ -39,29 +39,39 @@ double truncated_normal(Engine& engine, boost::random::normal_distribution<doubl
 // missing_force_fraction): each failed filament counted as the finished one of the nearest depth
 // fraction (the force of a filament follows its reach first).
 double missing_force_fraction(const BrushResult& result) {
-  double finished = 0, missing = 0;
-  bool any_failed = false, any_finished = false;
+  // A filament's mean normal force: its own (interpolated, for a population) or its run's.
+  const auto force = [&](const BrushFilament& f) {
+    return result.estimates.empty() ? result.distinct[f.group].mean_normal_force_n
+                                    : result.estimates[f.index].mean_normal_force_n;
+  };
+  std::vector<std::pair<double, double>> finished;  // (depth fraction, force), sorted by depth
+  std::vector<const BrushFilament*> failed;
   for (const BrushFilament& f : result.filaments) {
     const FilamentSteadyState& d = result.distinct[f.group];
-    if (!d.reaches) continue;
-    if (d.ran) {
-      finished += d.mean_normal_force_n;
-      any_finished = true;
-      continue;
-    }
-    any_failed = true;
-    const BrushFilament* nearest = nullptr;
-    for (const BrushFilament& g : result.filaments) {
-      const FilamentSteadyState& e = result.distinct[g.group];
-      if (e.reaches && e.ran &&
-          (!nearest || std::abs(g.depth_fraction - f.depth_fraction) < std::abs(nearest->depth_fraction - f.depth_fraction)))
-        nearest = &g;
-    }
-    if (nearest) missing += result.distinct[nearest->group].mean_normal_force_n;
+    if (!d.reaches || !(f.depth_fraction > 0.0)) continue;
+    if (d.ran)
+      finished.emplace_back(f.depth_fraction, force(f));
+    else
+      failed.push_back(&f);
   }
-  if (!any_failed) return 0.0;
-  if (!any_finished) return NAN;
-  return missing + finished > 0 ? missing / (missing + finished) : 0.0;
+  if (failed.empty()) return 0.0;
+  if (finished.empty()) return NAN;
+  std::stable_sort(finished.begin(), finished.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  double total = 0, missing = 0;
+  for (const auto& [depth, f] : finished) total += f;
+  for (const BrushFilament* f : failed) {
+    // The finished filament of the nearest depth fraction (the first of equals).
+    auto it = std::lower_bound(finished.begin(), finished.end(), f->depth_fraction,
+                               [](const auto& a, double v) { return a.first < v; });
+    if (it == finished.end() ||
+        (it != finished.begin() && f->depth_fraction - std::prev(it)->first <= it->first - f->depth_fraction)) {
+      --it;
+      while (it != finished.begin() && std::prev(it)->first == it->first) --it;
+    }
+    missing += it->second;
+  }
+  return missing + total > 0 ? missing / (missing + total) : 0.0;
 }
 
 // The nominal filament's configuration without [brush]: what the surface's coordinate is built from.

@@ -25,8 +25,11 @@
 #include "rotbeam/job_runner.hpp"
 #include "rotbeam/units.hpp"
 
+#include <unsupported/Eigen/FFT>
+
 #include <algorithm>
 #include <array>
+#include <complex>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -116,7 +119,7 @@ struct Node {
   double length_m = 0, diameter_m = 0;
   bool zero = false;  // the stand-in of the filaments that do not reach: zero values, not run
   FilamentOrbit orbit;
-  int source = -1;    // whose values stand in for it (itself, or for a failed run the nearest finished node)
+  int source = -1;    // whose values stand in for it in the estimate (itself, or for a failed run the nearest finished node)
 };
 
 class Population {
@@ -138,7 +141,7 @@ private:
     nodes_.push_back(std::move(n));
     const int id = static_cast<int>(nodes_.size()) - 1;
     index_.emplace(key, id);
-    if (!nodes_.back().zero) pending_.push_back(id);
+    pending_.push_back(id);
     return id;
   }
   int real_runs() const {
@@ -170,7 +173,23 @@ private:
   }
   // One refinement round's indicators; true when the estimate meets the tolerance.
   bool estimate(std::vector<Mark>& marks);
-  // The filament's values: its own run's where it was run on its own, else interpolated.
+  bool failed(int node) const { return !nodes_[node].zero && !nodes_[node].orbit.state.ran; }
+  // The share of a filament's interpolation on nodes whose run failed (0 for one run on its own).
+  double failed_weight(const BrushFilament& f) const {
+    if (exact_node_[f.index] >= 0) return 0.0;
+    double w = 0;
+    for (const auto& [node, weight] : weights(f.length_m, f.diameter_m))
+      if (weight != 0.0 && failed(node)) w += weight;
+    return w;
+  }
+  // Whether the filament counts as failed: its own run failed, or its interpolation leans on a run
+  // that did (as the filament route, which leaves a failed filament out of every sum).
+  bool counts_failed(const BrushFilament& f) const {
+    const int own = exact_node_[f.index];
+    return own >= 0 ? failed(own) : failed_weight(f) > 0.0;
+  }
+  // The filament's values: its own run's where it was run on its own, else interpolated (a failed
+  // node's values are its nearest finished neighbour's, fill_sources).
   Watched value_of(const BrushFilament& f) const {
     const int own = exact_node_[f.index];
     return own >= 0 ? value(own) : interpolate(f.length_m, f.diameter_m);
@@ -190,6 +209,7 @@ private:
   std::vector<const BrushFilament*> reaching_, by_length_, by_diameter_;
   std::vector<int> exact_node_;       // by filament index: the node of its own run, or −1 (interpolated)
   std::vector<double> contribution_;  // by filament index: its share of the last estimate (Σ over its cells)
+  double failure_doubt_ = 0;          // the last estimate's share from filaments interpolated on failed runs
   PopulationEstimate estimate_;
   BrushProgress progress_;
 };
@@ -281,15 +301,37 @@ void Population::run_filament(const BrushFilament& f) {
 }
 
 bool Population::estimate(std::vector<Mark>& marks) {
-  Watched sum{};
+  // The sums as they stand: the filaments that count as failed are left out, as in the result.
+  Watched sum{}, doubt{};
+  bool unresolved_failure = false;
   for (const BrushFilament* f : reaching_) {
     const Watched v = value_of(*f);
-    for (int q = 0; q < kWatched; ++q) sum[q] += v[q];
+    if (!counts_failed(*f)) {
+      for (int q = 0; q < kWatched; ++q) sum[q] += v[q];
+    } else if (exact_node_[f->index] < 0) {
+      // Interpolated on a failed run: unknown until the filament is run on its own.
+      unresolved_failure = true;
+      for (int q = 0; q < kWatched; ++q) doubt[q] += std::abs(v[q]);
+    }
   }
   Watched error{};
   marks.clear();
   std::fill(contribution_.begin(), contribution_.end(), 0.0);
-  const auto scale = [&](int q) { return std::max(std::abs(sum[q]), 1e-300); };
+  failure_doubt_ = 0;
+  const auto scale = [&](int q) { return std::max(std::abs(sum[q]) + doubt[q], 1e-300); };
+  // A filament interpolated on a failed run adds its stand-in value's magnitude to the error (all of
+  // it when nothing stands in), and is a candidate to run on its own.
+  for (const BrushFilament* f : reaching_) {
+    if (exact_node_[f->index] >= 0 || !counts_failed(*f)) continue;
+    const Watched v = value_of(*f);
+    double own = 0;
+    for (int q = 0; q < kWatched; ++q) {
+      error[q] += std::abs(v[q]);
+      if (q != 1) own = std::max(own, std::abs(v[q]) / scale(q));
+    }
+    contribution_[f->index] += std::max(own, 1e-12);
+    failure_doubt_ += std::max(own, 1e-12);
+  }
   for (int axis = 0; axis < 2; ++axis) {
     const Axis& ax = axis == 0 ? lengths_ : diameters_;
     for (std::size_t c = 0; c < ax.cells.size(); ++c) {
@@ -305,7 +347,7 @@ bool Population::estimate(std::vector<Mark>& marks) {
       int inside = 0;
       for (; it != sorted.end() && key(*it) < cell.b; ++it) {
         const BrushFilament* f = *it;
-        if (exact_node_[f->index] >= 0) continue;  // run on its own: nothing to interpolate
+        if (exact_node_[f->index] >= 0 || counts_failed(*f)) continue;  // run on its own, or counted above
         ++inside;
         const double x = key(f);
         const double hat = 1.0 - std::abs(x - cell.m) / half;
@@ -330,17 +372,19 @@ bool Population::estimate(std::vector<Mark>& marks) {
       if (eta > 0.0 && width > 1e-9) marks.push_back({eta, axis, c, inside});
     }
   }
+  for (int q = 0; q < kWatched; ++q)
+    if (unresolved_failure && !(error[q] > 0.0)) error[q] = scale(q);  // nothing stands in: all in doubt
   estimate_.normal_force_error = error[0] / scale(0);
   estimate_.tangential_force_error = error[1] / scale(1);
   estimate_.hub_torque_error = error[2] / scale(2);
-  return estimate_.normal_force_error <= estimate_.tolerance && estimate_.hub_torque_error <= estimate_.tolerance;
+  return !unresolved_failure && estimate_.normal_force_error <= estimate_.tolerance &&
+         estimate_.hub_torque_error <= estimate_.tolerance;
 }
 
 void Population::run() {
   const BrushSettings& b = *config_.brush;
   estimate_.tolerance = b.population_tolerance;
   result_.filaments = brush_filaments(config_);
-  // Check every drawn filament's configuration before anything runs, as the filament route does.
   for (BrushFilament& f : result_.filaments) {
     f.group = 0;
     if (f.depth_fraction > 0.0) reaching_.push_back(&f);
@@ -361,7 +405,13 @@ void Population::run() {
     }
     lengths_ = Axis::over(l_lo, l_hi, 2);
     diameters_ = Axis::over(d_lo, d_hi, 1);
-    add_grid();
+    if (reaching_.size() <= lengths_.nodes.size() * diameters_.nodes.size()) {
+      // No more filaments than the first grid has nodes: each runs on its own (the filament route).
+      for (const BrushFilament* f : reaching_) run_filament(*f);
+      lengths_ = Axis{}, diameters_ = Axis{};
+    } else {
+      add_grid();
+    }
     run_pending();
     std::vector<Mark> marks;
     for (;;) {
@@ -375,7 +425,7 @@ void Population::run() {
       // two halves' midpoints run along every line of the other axis), or one filament run on its
       // own — where a few filaments hold a cell's error (the force's spike where a filament barely
       // reaches) running them costs less than splitting the cell round them.
-      double total = 0;
+      double total = failure_doubt_;
       std::vector<Action> actions;
       for (const Mark& m : marks) {
         total += m.eta;
@@ -402,6 +452,15 @@ void Population::run() {
         if (taken >= 0.5 * total) break;
       }
       if (split.empty() && alone.empty()) break;  // the budget is spent
+      // Never more runs than running every interpolated filament on its own would take.
+      std::size_t interpolated = 0;
+      for (const BrushFilament* f : reaching_) interpolated += exact_node_[f->index] < 0;
+      if (interpolated <= static_cast<std::size_t>(runs - real_runs()) &&
+          real_runs() + static_cast<int>(interpolated) <= b.population_max_runs) {
+        for (const BrushFilament* f : reaching_) run_filament(*f);
+        run_pending();
+        continue;
+      }
       for (const std::size_t k : alone) run_filament(result_.filaments[k]);
       // Split the highest cell indices first so that earlier indices stay valid.
       std::sort(split.begin(), split.end(), [](const auto& x, const auto& y) { return x > y; });
@@ -415,8 +474,8 @@ void Population::run() {
 
 void Population::assemble() {
   const double omega = rad_per_s_from_rpm(config_.beam.speed_rpm);
-  // The filaments run: every node of the grid, and a stand-in (not run) for the filaments that do not
-  // reach the surface, at the length that just reaches it.
+  // The filaments run: every node of the grid, the filaments run on their own, and a stand-in (not
+  // run) for the filaments that do not reach the surface, at the length that just reaches it.
   const double l0 = config_.beam.length_m, p0 = config_.surface.depth_fraction;
   if (reaching_.size() < result_.filaments.size()) {
     Node n;
@@ -439,35 +498,46 @@ void Population::assemble() {
     else
       result_.distinct[k] = n.orbit.state;
   }
-  // Each filament: its weights on the nodes, its estimates, its nearest node run.
+  // Each filament: its weights on the nodes, its estimates, its nearest node run. A filament that
+  // counts as failed (its own run failed, or its interpolation leans on one that did) is left out of
+  // every sum and table, as the filament route leaves out a filament that failed.
   result_.estimates.assign(result_.filaments.size(), FilamentEstimate{});
-  // Phases to the nearest quarter of output.bin_deg (at most 8192 cells round the revolution).
-  const int cells = std::min(8192, std::max(1, static_cast<int>(std::lround(360.0 / config_.simulation.bin_deg))) * 4);
+  // Phases to the nearest quarter of output.bin_deg.
+  const int cells = std::max(1, static_cast<int>(std::lround(360.0 / config_.simulation.bin_deg))) * 4;
   const double cell_deg = 360.0 / cells;
   std::vector<std::vector<double>> phases(count);  // per node: the weights of its filaments' phases, by fine cell
   for (BrushFilament& f : result_.filaments) {
     if (!(f.depth_fraction > 0.0)) {
       f.group = static_cast<int>(count) - 1;  // the stand-in, last
       ++result_.run[f.group].nearest;
+      result_.run[f.group].weight += 1.0;
+      continue;
+    }
+    const int own = exact_node_[f.index];
+    const std::array<std::pair<int, double>, 4> weights_of =
+        own >= 0 ? std::array<std::pair<int, double>, 4>{{{own, 1.0}, {own, 0.0}, {own, 0.0}, {own, 0.0}}}
+                 : weights(f.length_m, f.diameter_m);
+    if (counts_failed(f)) {
+      int worst = own;
+      double worst_w = -1;
+      for (const auto& [node, w] : weights_of)
+        if (w > worst_w && failed(node)) worst = node, worst_w = w;
+      f.group = worst;
+      ++result_.run[worst].nearest;
       continue;
     }
     FilamentEstimate& e = result_.estimates[f.index];
     int nearest = -1;
     double nearest_w = -1;
-    const int cell = static_cast<int>(std::lround(f.phase_deg / cell_deg)) % cells;
-    const int own = exact_node_[f.index];
-    std::array<std::pair<int, double>, 4> weights_of = own >= 0 ? std::array<std::pair<int, double>, 4>{{{own, 1.0}, {own, 0.0}, {own, 0.0}, {own, 0.0}}}
-                                                                : weights(f.length_m, f.diameter_m);
+    const int cell = ((static_cast<int>(std::lround(f.phase_deg / cell_deg)) % cells) + cells) % cells;
     for (const auto& [node, w] : weights_of) {
       if (w == 0.0) continue;
-      if (!nodes_[node].zero && w > nearest_w) nearest = node, nearest_w = w;
+      if (w > nearest_w) nearest = node, nearest_w = w;
       result_.run[node].weight += w;
       auto& ph = phases[node];
       if (ph.empty()) ph.assign(cells, 0.0);
-      ph[(cell + cells) % cells] += w;
-      const Node& n = nodes_[node];
-      if (n.zero || n.source < 0) continue;
-      const FilamentSteadyState& s = nodes_[n.source].orbit.state;
+      ph[cell] += w;
+      const FilamentSteadyState& s = nodes_[node].orbit.state;
       e.mean_normal_force_n += w * s.mean_normal_force_n;
       e.mean_tangential_force_n += w * s.mean_tangential_force_n;
       e.mean_hub_torque_n_m += w * s.mean_hub_torque_n_m;
@@ -481,18 +551,23 @@ void Population::assemble() {
     f.group = nearest;
     ++result_.run[nearest].nearest;
   }
-  // The workpiece: each node's orbit at its own angle, on fine cells, turned by its filaments' phases
-  // (each to the nearest fine cell) and summed; the profile at the own angle.
+  // The workpiece: each node's orbit at its own angle on fine cells, correlated round the revolution
+  // with its filaments' phases (a filament at phase cell j reaches own cell c when the reference is
+  // at c − j: REF = OWN · conj(PHASES) in Fourier space, Eigen's FFT) and summed; the profile at the
+  // own angle.
   ForceBins total(config_.simulation.bin_deg, omega), profile(config_.simulation.bin_deg, omega);
-  std::vector<double> own_n(cells), own_t(cells), own_h(cells), own_i(cells);
-  std::vector<double> ref_n(cells, 0.0), ref_t(cells, 0.0), ref_h(cells, 0.0), ref_i(cells, 0.0);
+  constexpr int kChannels = 4;  // normal, tangential, hub, impacts
+  std::array<std::vector<double>, kChannels> own_cells;
+  std::array<std::vector<std::complex<double>>, kChannels> sum;
+  for (int ch = 0; ch < kChannels; ++ch) own_cells[ch].assign(cells, 0.0), sum[ch].assign(cells, 0.0);
+  std::vector<std::complex<double>> spectrum(cells), phase_spectrum(cells);
+  Eigen::FFT<double> fft;
   for (std::size_t k = 0; k < nodes_.size(); ++k) {
     const Node& n = nodes_[k];
-    if (n.zero || n.source < 0 || phases[k].empty()) continue;
-    const FilamentOrbit& orbit = nodes_[n.source].orbit;
+    if (n.zero || !n.orbit.state.ran || phases[k].empty()) continue;
+    const FilamentOrbit& orbit = n.orbit;
     const double weight_all = result_.run[k].weight;
-    std::fill(own_n.begin(), own_n.end(), 0.0), std::fill(own_t.begin(), own_t.end(), 0.0);
-    std::fill(own_h.begin(), own_h.end(), 0.0), std::fill(own_i.begin(), own_i.end(), 0.0);
+    for (auto& c : own_cells) std::fill(c.begin(), c.end(), 0.0);
     for (const MomentumDelivery& d : orbit.deliveries) {
       profile.add(d, 0.0, orbit.weight * weight_all);
       // The delivery on the fine cells of its own angle, spread uniformly over what it spans.
@@ -500,9 +575,9 @@ void Population::assemble() {
       const int first = static_cast<int>(std::floor(from / cell_deg));
       if (!(d.span_deg > 0.0)) {
         const int c = ((first % cells) + cells) % cells;
-        own_n[c] += orbit.weight * d.normal_n_s, own_t[c] += orbit.weight * d.tangential_n_s;
-        own_h[c] += orbit.weight * d.hub_angular_impulse_n_m_s;
-        if (d.impact) own_i[c] += orbit.weight;
+        own_cells[0][c] += orbit.weight * d.normal_n_s, own_cells[1][c] += orbit.weight * d.tangential_n_s;
+        own_cells[2][c] += orbit.weight * d.hub_angular_impulse_n_m_s;
+        if (d.impact) own_cells[3][c] += orbit.weight;
         continue;
       }
       const double to = from + d.span_deg;
@@ -511,27 +586,31 @@ void Population::assemble() {
         if (!(hi > lo)) continue;
         const double share = (hi - lo) / d.span_deg * orbit.weight;
         const int w = ((c % cells) + cells) % cells;
-        own_n[w] += share * d.normal_n_s, own_t[w] += share * d.tangential_n_s;
-        own_h[w] += share * d.hub_angular_impulse_n_m_s;
+        own_cells[0][w] += share * d.normal_n_s, own_cells[1][w] += share * d.tangential_n_s;
+        own_cells[2][w] += share * d.hub_angular_impulse_n_m_s;
       }
     }
-    const std::vector<double>& ph = phases[k];
-    std::vector<int> own_cells;
-    for (int c = 0; c < cells; ++c)
-      if (own_n[c] != 0.0 || own_t[c] != 0.0 || own_h[c] != 0.0 || own_i[c] != 0.0) own_cells.push_back(c);
-    for (int j = 0; j < cells; ++j) {
-      const double w = ph[j];
-      if (w == 0.0) continue;
-      for (const int c : own_cells) {
-        const int r = (c - j + cells) % cells;  // a filament at phase j reaches own angle c at reference r
-        ref_n[r] += w * own_n[c], ref_t[r] += w * own_t[c], ref_h[r] += w * own_h[c], ref_i[r] += w * own_i[c];
-      }
+    fft.fwd(phase_spectrum, phases[k]);
+    for (int ch = 0; ch < kChannels; ++ch) {
+      fft.fwd(spectrum, own_cells[ch]);
+      for (int m = 0; m < cells; ++m) sum[ch][m] += spectrum[m] * std::conj(phase_spectrum[m]);
     }
   }
+  std::array<std::vector<double>, kChannels> reference;
+  double largest = 0;
+  for (int ch = 0; ch < kChannels; ++ch) {
+    fft.inv(reference[ch], sum[ch]);
+    for (double v : reference[ch]) largest = std::max(largest, std::abs(v));
+  }
+  // The transform's round-off (≈ 1e-16 of the largest cell) is not momentum: below 1e-13 of it a
+  // cell is empty, as it is in the filament route.
+  const double floor = 1e-13 * largest;
+  const auto clean = [floor](double v) { return std::abs(v) <= floor ? 0.0 : v; };
   for (int r = 0; r < cells; ++r) {
-    if (ref_n[r] != 0.0 || ref_t[r] != 0.0 || ref_h[r] != 0.0)
-      total.add_spread(-180.0 + r * cell_deg, cell_deg, ref_n[r], ref_t[r], ref_h[r]);
-    total.add_impacts(-180.0 + (r + 0.5) * cell_deg, ref_i[r]);
+    const double normal = clean(reference[0][r]), tangential = clean(reference[1][r]), hub = clean(reference[2][r]);
+    if (normal != 0.0 || tangential != 0.0 || hub != 0.0)
+      total.add_spread(-180.0 + r * cell_deg, cell_deg, normal, tangential, hub);
+    total.add_impacts(-180.0 + (r + 0.5) * cell_deg, clean(reference[3][r]));
   }
 
   finish_brush(result_, config_, total, profile, start_);
@@ -552,8 +631,9 @@ void Population::assemble() {
   int failed = 0;
   for (const Node& n : nodes_) failed += !n.zero && !n.orbit.state.ran;
   if (failed > 0)
-    s.warnings.push_back(std::to_string(failed) + " representative filaments failed: their neighbours' values stand in "
-                         "for them, and the filaments nearest to them are counted failed");
+    s.warnings.push_back(std::to_string(failed) + " representative filaments failed: the filaments whose values would "
+                         "lean on them are counted failed and left out of the sums, as the filament route leaves out "
+                         "a filament that fails (missing_force_fraction estimates their share)");
 }
 
 }  // namespace
