@@ -61,7 +61,8 @@ def main():
         wp, p = run(a.rotbeam, out / f"{name}-population", sets + ['brush.method="population"'])
         est = p["population"]["estimated_error"]
         print(f"{name}: {a.filaments} filaments ({p['reaching_filaments']} reach), population: "
-              f"{p['population']['representatives']} representatives, {wp:.1f} s, converged {p['population']['converged']}")
+              f"{p['population']['representatives']} runs ({p['population']['exact_filaments']} filaments on their own), "
+              f"{wp:.1f} s, converged {p['population']['converged']}")
         if not a.skip_filaments:
             wf, f = run(a.rotbeam, out / f"{name}-filaments", sets)
             print(f"  filament route: {f['distinct_filaments']} distinct, {wf:.1f} s; population / filaments wall {wp / wf:.3f}")
