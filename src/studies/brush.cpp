@@ -12,11 +12,9 @@
 #include <boost/random/normal_distribution.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <sstream>
 #include <cstdio>
-#include <deque>
 #include <map>
 #include <mutex>
 #include <utility>
