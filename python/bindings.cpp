@@ -1,5 +1,8 @@
 // rotbeam._core: the C++ library's jobs for Python, with the GIL released while they compute.
 // Configuration errors raise rotbeam._core.ConfigError (a ValueError) with the CLI's message.
+#include "rotbeam/continuation_output.hpp"
+#include "rotbeam/job_runner.hpp"
+#include "rotbeam/orbit_continuation.hpp"
 #include "rotbeam/wear_output.hpp"
 #include "rotbeam/wear_run.hpp"
 #include "rotbeam/brush.hpp"
@@ -194,6 +197,43 @@ py::tuple wear(const std::optional<std::string>& path, const Values& overrides, 
   });
   return py::make_tuple(from_json(wear_run_json(result, config, options)), py::bytes(wear_history_csv(result)),
                         py::bytes(wear_depth_csv(result, config.wear)));
+}
+
+py::tuple continue_orbits(const std::optional<std::string>& path, const Values& overrides, const std::string& parameter,
+                          double from, double to, int period, double tolerance, double step, double max_step,
+                          int max_points, bool doubling, int threads) {
+  const Config base = load(path, overrides);
+  if (base.brush) throw ConfigError("brush: continue_orbits() follows one filament; leave out the [brush] keys");
+  require_known_key(parameter, "parameter");
+  if (!(step > 0) || !(max_step >= step) || !std::isfinite(max_step))
+    throw ConfigError("step = " + shortest(step) + ", max_step = " + shortest(max_step) +
+                      ": must be positive with max_step >= step");
+  if (max_points < 2 || max_points > 100000)
+    throw ConfigError("max_points = " + std::to_string(max_points) + ": must be 2 … 100000");
+  if (tolerance < 0 || !std::isfinite(tolerance))
+    throw ConfigError("tolerance = " + shortest(tolerance) + ": must be a positive number (0: simulation.steady_tolerance)");
+  OrbitContinuationOptions options;
+  options.parameter = parameter;
+  options.from = from;
+  options.to = to;
+  options.period = period;
+  options.tolerance = tolerance;
+  options.settings.initial_step = step;
+  options.settings.max_step = max_step;
+  options.settings.max_points = max_points;
+  options.settings.switch_period_doubling = doubling;
+  options.settings.threads = default_threads(threads);
+  const ConfigAtValue config_at = [&](const std::string& literal) {
+    Values v = overrides;
+    v.emplace_back(parameter, literal);
+    return load(path, v);
+  };
+  const OrbitContinuation run = interruptible([&](const StopToken& stop) {
+    OrbitContinuationOptions o = options;
+    o.settings.stop = &stop;
+    return continue_orbits(config_at, o);
+  });
+  return py::make_tuple(from_json(continuation_json(run)), py::bytes(branch_csv(run)));
 }
 
 py::object impact(const std::optional<std::string>& path, const Values& overrides) {
@@ -456,6 +496,10 @@ PYBIND11_MODULE(_core, m) {
         "wear_profile.csv's, representatives.csv's and spectrum.csv's text).");
   m.def("wear", &wear, py::arg("path"), py::arg("overrides"), py::arg("hours"), py::arg("steps"),
         "Wear over hours of operation: (summary dict, wear_history.csv's and wear_depth.csv's text).");
+  m.def("continue_orbits", &continue_orbits, py::arg("path"), py::arg("overrides"), py::arg("parameter"),
+        py::arg("start"), py::arg("stop"), py::arg("period"), py::arg("tolerance"), py::arg("step"),
+        py::arg("max_step"), py::arg("max_points"), py::arg("doubling"), py::arg("threads"),
+        "Continuation of the periodic orbit in one key: (summary dict, branch.csv's text).");
   m.def("impact", &impact, py::arg("path"), py::arg("overrides"),
         "The first impact as a dict (the fields of `rotbeam impact --json`), or None without impact.");
   m.def("modes", &modes, py::arg("path"), py::arg("overrides"), py::arg("speeds_rpm"),

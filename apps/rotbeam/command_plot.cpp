@@ -13,15 +13,20 @@ namespace {
 struct PlotOptions {
   std::string folder, output;
   bool cases = false;
+  std::string brute_force;
 };
 }  // namespace
 
 Command add_plot_command(CLI::App& app) {
   auto opts = std::make_shared<PlotOptions>();
   CLI::App* sub = app.add_subcommand("plot", "Write the PNG pictures of a run, sweep or brush folder (matplotlib)");
-  sub->add_option("folder", opts->folder, "A folder written by `rotbeam run`, `rotbeam sweep`, `rotbeam merge` or `rotbeam brush`")->required();
+  sub->add_option("folder", opts->folder,
+                  "A folder written by `rotbeam run`, `sweep`, `merge`, `brush`, `wear` or `continue`")->required();
   sub->add_option("-o,--output", opts->output, "Where to write the PNGs (default: the folder)")->check(non_empty_path());
   sub->add_flag("--cases", opts->cases, "For a sweep, also the pictures of every case");
+  sub->add_option("--brute-force", opts->brute_force,
+                  "For a continuation, a sweep folder over the same key whose steady states are drawn over the branch")
+      ->check(non_empty_path());
   return [opts] {
     namespace fs = std::filesystem;
     const fs::path dir(opts->folder);
@@ -56,6 +61,7 @@ Command add_plot_command(CLI::App& app) {
     std::vector<std::string> args = {opts->folder};
     if (!opts->output.empty()) args.insert(args.end(), {"-o", opts->output});
     if (opts->cases) args.push_back("--cases");
+    if (!opts->brute_force.empty()) args.insert(args.end(), {"--brute-force", opts->brute_force});
     return run_python_plots(args);
   };
 }

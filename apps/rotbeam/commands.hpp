@@ -22,5 +22,6 @@ Command add_static_command(CLI::App& app);
 Command add_theories_command(CLI::App& app);
 Command add_keys_command(CLI::App& app);
 Command add_wear_command(CLI::App& app);
+Command add_continue_command(CLI::App& app);
 
 }  // namespace rotbeam::cli

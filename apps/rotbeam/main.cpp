@@ -52,13 +52,14 @@ int main(int argc, char** argv) {
   Command theories = add_theories_command(app);
   Command keys = add_keys_command(app);
   Command wear = add_wear_command(app);
+  Command continuation = add_continue_command(app);
   if (argc > 1 && argv[1][0] != '-' && std::string(argv[1]) != "modes" && std::string(argv[1]) != "impact" &&
       std::string(argv[1]) != "run" && std::string(argv[1]) != "converge" &&
       std::string(argv[1]) != "sweep" && std::string(argv[1]) != "merge" && std::string(argv[1]) != "brush" &&
       std::string(argv[1]) != "plot" && std::string(argv[1]) != "animate" &&
       std::string(argv[1]) != "reproduce" && std::string(argv[1]) != "static" && std::string(argv[1]) != "theories" &&
-      std::string(argv[1]) != "keys" && std::string(argv[1]) != "wear") {
-    print_error("unknown command '" + std::string(argv[1]) + "' (commands: run, sweep, merge, brush, wear, plot, animate, reproduce, converge, theories, impact, modes, static, keys; see rotbeam --help)");
+      std::string(argv[1]) != "keys" && std::string(argv[1]) != "wear" && std::string(argv[1]) != "continue") {
+    print_error("unknown command '" + std::string(argv[1]) + "' (commands: run, sweep, merge, brush, wear, continue, plot, animate, reproduce, converge, theories, impact, modes, static, keys; see rotbeam --help)");
     return kBadInput;
   }
   const int code = [&]() -> int {
@@ -89,6 +90,7 @@ int main(int argc, char** argv) {
       if (app.got_subcommand("theories")) return theories();
       if (app.got_subcommand("keys")) return keys();
       if (app.got_subcommand("wear")) return wear();
+      if (app.got_subcommand("continue")) return continuation();
     } catch (const rotbeam::ConfigError& e) {
       print_error(e.what());
       return kBadInput;

@@ -51,19 +51,21 @@ struct ContinuationSettings {
   double tolerance = 1e-8;         // a point is converged when ‖P(z) − z‖ / ‖z‖ is below this
   double initial_step = 0.02;
   double min_step = 1e-4;          // below this the branch is given up (the note says where)
-  double max_step = 0.05;
+  double max_step = 0.1;
   int max_points = 400;            // points per branch
   int max_corrector_iterations = 8;
   double jacobian_step = 1e-5;     // δ = jacobian_step · max(‖z‖, 1e-6) for ∂P/∂z; the same fraction of |to − from| for ∂P/∂p
   bool switch_period_doubling = true;  // follow the doubled branch from each period doubling
-  int max_branches = 4;            // the first branch and at most this many doubled ones, in all
+  int max_branches = 4;            // doubled branches followed at most
+  double restart_jump = 0.01;      // after a stall, the orbit is sought again this far on (in u) …
+  int max_restarts = 50;           // … at most this many times (only with a reseed function)
   int threads = 1;                 // for the Jacobian's columns
   const StopToken* stop = nullptr;
 };
 
 /// A converged point of a branch.
 struct BranchPoint {
-  int branch = 0;                  // 0: the branch started at `from`; 1, 2, …: doubled branches
+  int branch = 0;                  // 0: the branch started at `from`; 1, 2, …: restarted or doubled branches
   int period = 1;                  // M
   double parameter = 0;            // p
   Eigen::VectorXd z;               // the fixed point
@@ -104,8 +106,18 @@ struct SpecialPoint {
 struct BranchSummary {
   int branch = 0, period = 1;
   int points = 0;
-  std::string end;             // how the branch ended, in words
+  std::string start;           // how the branch began, in words
+  std::string end;             // how it ended
 };
+
+/// An orbit found at p by other means than the continuation (a brute-force or shooting search from a
+/// state near it), to restart from where a branch stalled.
+struct Reseed {
+  Eigen::VectorXd z;
+  int period = 1;
+  std::string note;  // how it was found
+};
+using ReseedFunction = std::function<std::optional<Reseed>(double p, const Eigen::VectorXd& z_near)>;
 
 struct ContinuationResult {
   std::vector<BranchPoint> points;   // every branch's, in order
@@ -126,10 +138,13 @@ struct ContinuationProgress {
 
 /// Continues the fixed points of `map` from (z0, from) toward `to`, with period M = `period`. z0 need
 /// not be converged: it is corrected at p = from first (when that fails, the result has no point and
-/// its first branch's `end` says why). Throws std::invalid_argument for from == to or a non-finite
-/// bound, an empty z0 or a period < 1.
+/// its first branch's `end` says why). Where a branch stalls (no step down to min_step converges:
+/// the map is not smooth there, or an evaluation fails) and `reseed` is given, the orbit is sought
+/// again by it restart_jump further on and a new branch follows from there. Throws
+/// std::invalid_argument for from == to or a non-finite bound, an empty z0 or a period < 1.
 ContinuationResult continue_fixed_points(const ParametrisedMap& map, const Eigen::VectorXd& z0, double from, double to,
                                          int period, const ContinuationSettings& settings,
-                                         const std::function<void(const ContinuationProgress&)>& on_point = {});
+                                         const std::function<void(const ContinuationProgress&)>& on_point = {},
+                                         const ReseedFunction& reseed = {});
 
 }  // namespace rotbeam

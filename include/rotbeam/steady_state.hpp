@@ -20,6 +20,7 @@ struct MapEvaluation {
   int contact_episodes = 0;  // sustained-contact episodes over the m revolutions
   bool complete = false;     // the m revolutions ran to their end
   std::optional<NumericalFailure> failure;
+  PassSummary summary;       // the run's summary (its ledger, peak force and deflection over the m revolutions)
 };
 
 /// The m-revolution map P^m of the section θ = θ0 (mod 360°): m revolutions run by run_pass from

@@ -57,7 +57,7 @@ if TYPE_CHECKING:  # only for the annotations: xarray is imported when a Dataset
 __version__: str = _core.__version__
 """rotbeam's version (project(VERSION) in CMakeLists.txt, the one place it is set)."""
 
-__all__ = ["run", "impact", "modes", "static", "brush", "wear", "sweep", "open_sweep", "Result", "BrushResult",
+__all__ = ["run", "impact", "modes", "static", "brush", "wear", "continue_orbits", "ContinuationResult", "sweep", "open_sweep", "Result", "BrushResult",
            "WearResult", "ConfigError", "ConfigFileNotFoundError", "config_keys", "keys", "__version__"]
 
 # What `config` may be: a TOML file's path, a dict shaped like the file, or None for the defaults.
@@ -406,6 +406,53 @@ def wear(config: ConfigLike = None, overrides: Overrides = None, hours: float = 
     path, sets = _arguments(config, overrides)
     summary, history, depth = _core.wear(path, sets, float(hours), int(steps))
     return WearResult(summary, _table_arrays(history, "wear_history.csv"), _table_arrays(depth, "wear_depth.csv"))
+
+
+class ContinuationResult:
+    """Periodic orbits followed in one key (`rotbeam continue`, docs/continuation.md): `summary` (the
+    keys of its summary.json: branches, special_points, engine_order_crossings, map_evaluations, …)
+    and `branch` (numpy arrays by the columns of branch.csv: one row per orbit, its parameter,
+    stability, multipliers mu{i}_re/mu{i}_im, section state z{i} and the metrics of one period)."""
+
+    def __init__(self, summary, branch):
+        self.summary = summary
+        self.branch = branch
+
+    @property
+    def special_points(self):
+        """The special points (folds, period doublings, Neimark–Sacker, grazing) as dicts."""
+        return self.summary["special_points"]
+
+    def __repr__(self):
+        s = self.summary
+        kinds = ", ".join(sorted({p["kind"] for p in s["special_points"]})) or "no special point"
+        return (f"ContinuationResult({s['parameter']} {s['from']:g} → {s['to']:g}: {s['points']} orbits, "
+                f"{s['stable_points']} stable, {len(s['branches'])} branches; {kinds})")
+
+
+def continue_orbits(config: ConfigLike = None, overrides: Overrides = None, *, parameter: str, start: float,
+                    stop: float, period: int = 0, tolerance: float = 0.0, step: float = 0.02, max_step: float = 0.1,
+                    max_points: int = 400, doubling: bool = True, threads: int = 0) -> ContinuationResult:
+    """The filament's periodic orbit followed in the configuration key `parameter` from `start` to
+    `stop` (`rotbeam continue`, docs/continuation.md): pseudo-arclength continuation of the section
+    map's fixed points, with their multipliers at every point; folds, branch points, period doublings
+    (the doubled branch followed when `doubling`), Neimark–Sacker pairs and grazing located. period:
+    revolutions per orbit (0: the steady state's at `start`); tolerance: a point's relative residual
+    (0: simulation.steady_tolerance); step, max_step: along the branch in the range's fraction;
+    threads: for the Jacobian's evaluations (0: all cores). config and overrides as for run().
+    Ctrl-C raises KeyboardInterrupt."""
+    if not isinstance(parameter, str):
+        raise ConfigError(f"parameter = {parameter!r}: give a configuration key such as 'hub.speed_rpm'")
+    for name, value in (("start", start), ("stop", stop), ("tolerance", tolerance), ("step", step),
+                        ("max_step", max_step)):
+        if not _is_number(value):
+            raise ConfigError(f"{name} = {value!r}: give a number")
+    path, sets = _arguments(config, overrides)
+    summary, branch = _core.continue_orbits(path, sets, parameter, float(start), float(stop), int(period),
+                                            float(tolerance), float(step), float(max_step), int(max_points),
+                                            bool(doubling), int(threads))
+    from ._csv import read_csv
+    return ContinuationResult(summary, read_csv("branch.csv", data=branch, modes=2 * int(summary["modes"])))
 
 
 def impact(config: ConfigLike = None, overrides: Overrides = None) -> dict[str, Any] | None:

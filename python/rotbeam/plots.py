@@ -39,6 +39,7 @@ from ._runs import (check_run_files, check_summary, force_bins, history_columns,
 from ._surface import casing_radius, draw_surface, surface_of, surface_words, surface_x  # noqa: E402
 from .brush_plots import BRUSH_MAP_PANELS, DamagedBrush, brush_figures, read_brush  # noqa: E402
 from .wear_plots import DamagedWear, is_wear_folder, wear_figures  # noqa: E402
+from .continuation_plots import DamagedContinuation, continuation_figures, is_continuation_folder  # noqa: E402
 from .rub_map import is_rub_sweep, plot_campbell, rub_map_figure  # noqa: E402
 from .run_plots import (energy_figure, energy_note, force_figure, impacts_figure, modal_figure,  # noqa: E402
                         plot_normal_force, plot_run, run_figures, tip_path_figure)
@@ -73,6 +74,8 @@ def main(argv=None):
     parser.add_argument("--cases", action="store_true", help="for a sweep, also the pictures of every case")
     parser.add_argument("--campbell", metavar="PNG", help="draw a Campbell diagram of the CSV into PNG")
     parser.add_argument("--reproduce", action="store_true", help="draw the figures and report of `rotbeam reproduce`")
+    parser.add_argument("--brute-force", metavar="SWEEP", help="for a continuation, a sweep folder over the same key "
+                        "whose steady states are drawn over the branch")
     args = parser.parse_args(argv)
     folder = Path(args.folder)
     out = Path(args.output) if args.output else folder
@@ -91,6 +94,8 @@ def main(argv=None):
             written = save_figures(brush_figures(folder), out)
         elif (folder / "summary.json").exists() and is_wear_folder(folder):
             written = save_figures(wear_figures(folder), out)
+        elif (folder / "summary.json").exists() and is_continuation_folder(folder):
+            written = save_figures(continuation_figures(folder, args.brute_force), out)
         elif (folder / "summary.json").exists():
             written = plot_run(folder, out)
         elif not folder.exists():
@@ -100,7 +105,7 @@ def main(argv=None):
             print(f"rotbeam: error: {folder}: neither a run folder (summary.json) nor a sweep folder (sweep.csv)",
                   file=sys.stderr)
             return 2
-    except (DamagedFolder, DamagedBrush, DamagedWear, OutputFolderError) as e:
+    except (DamagedFolder, DamagedBrush, DamagedWear, DamagedContinuation, OutputFolderError) as e:
         return error(e)
     except OSError as e:  # before ValueError: some OSErrors are not, but say what file and why
         return file_error(e)

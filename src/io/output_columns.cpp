@@ -98,6 +98,27 @@ std::vector<OutputFile> make_files() {
         number("heat_w", "W", "the frictional heat made per second"),
         number("heat_to_surface_w", "W", "its share that flows into the surface"),
         number("wall_time_s", "s", "the steady-state search's wall time")}});
+  // `rotbeam continue` (docs/continuation.md): 2n columns per {i}, the section state's n + n components.
+  files.push_back(
+      {"branch.csv",
+       {integer("branch", "0: the branch from --from; 1, 2, …: branches followed from period doublings"),
+        integer("period", "revolutions per orbit, M"),
+        number("parameter", "the key's", "the continued key's value"),
+        {"stable", "", ColumnKind::boolean, "whether every multiplier has |μ| < 1", {}},
+        number("max_abs_multiplier", "1", "the largest |μ|"),
+        number("arclength", "1", "along the branch in the scaled unknowns (docs/continuation.md)"),
+        integer("corrector_iterations", "map evaluations the corrector took"),
+        integer("jacobian_event_changes", "evaluations of the Jacobian's stencil whose impacts or episodes differed"),
+        integer("impacts", "impacts over one period"),
+        integer("contact_episodes", "sustained-contact episodes over one period"),
+        number("normal_impulse_n_s", "N s", "the momentum into the surface over one period"),
+        number("peak_normal_force_n", "N", "the largest normal contact force over the period"),
+        number("mean_hub_torque_n_m", "N m", "the hub's mean torque over the period"),
+        number("mean_hub_power_w", "W", "the hub's mean power over the period"),
+        number("max_tip_deflection_ratio", "1", "the largest |y_t|/L over the period"),
+        number("z{i}", "1", "the section state: q_i/L for i ≤ n, then q̇_(i−n)/(ωL)"),
+        number("mu{i}_re", "1", "multiplier i's real part, largest |μ| first"),
+        number("mu{i}_im", "1", "multiplier i's imaginary part")}});
   files.push_back(
       {"wear_depth.csv",
        {number("position_from_m", "m", "the bin's start along the surface (as in wear_profile.csv)"),

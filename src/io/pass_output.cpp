@@ -319,6 +319,7 @@ std::unique_ptr<FolderLock> open_study_folder(const std::filesystem::path& dir, 
                                                        {"history.csv", "a run"},
                                                        {"workpiece.csv", "a brush"},
                                                        {"wear_history.csv", "a wear run"},
+                                                       {"branch.csv", "a continuation"},
                                                        {"report.md", "a reproduction"}};
   for (const auto& [file, kind] : kinds)
     if (std::find(files.begin(), files.end(), file) == files.end() && fs::exists(dir / file, ec))

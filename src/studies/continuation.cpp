@@ -292,6 +292,7 @@ public:
   // Follows one branch from its first (converged, with Jacobian) point in the direction of `hint`.
   // Returns how it ended.
   std::string follow(BranchPoint start, Eigen::VectorXd hint) {
+    stalled_ = false;
     Eigen::VectorXd t = tangent(augmented(start), hint);
     start.tangent_parameter = t[t.size() - 1];
     int index = static_cast<int>(out_.points.size());
@@ -334,7 +335,8 @@ public:
         }
         h = step / 2.0;
         if (h < s_.min_step) {
-          if (failure && !out_.failure) out_.failure = failure;
+          last_failure_ = failure;
+          stalled_ = true;
           return "stalled at p = " + num(last.parameter) + ": no step down to " + num(s_.min_step) + " converged" +
                  (failure ? " (an evaluation of the map failed: " + failure->message + ")" : "");
         }
@@ -351,7 +353,7 @@ public:
       t = t_new;
       report(out_.points.back());
       const int its = out_.points.back().corrector_iterations;
-      if (its <= 2) h = std::min(step * 1.5, s_.max_step);
+      if (its <= 3) h = std::min(step * 1.5, s_.max_step);
       else if (its >= 5) h = std::max(step / 1.5, s_.min_step);
       else h = step;
       const double u_new = scaled(out_.points.back().parameter);
@@ -372,23 +374,23 @@ public:
     on_point_(pr);
   }
 
-  // The first point: Newton on P(z) − z at p fixed, from z0.
-  std::optional<BranchPoint> first_point(const Eigen::VectorXd& z0, int period, std::string& why) {
+  // A first point: Newton on P(z) − z at p fixed, from z0.
+  std::optional<BranchPoint> first_point(const Eigen::VectorXd& z0, double p0, int period, std::string& why) {
     BranchPoint pt;
     pt.period = period;
-    pt.parameter = from_;
+    pt.parameter = p0;
     pt.z = z0;
     std::optional<NumericalFailure> failure;
-    MapValue v0 = evaluate(z0, from_, period);
+    MapValue v0 = evaluate(z0, p0, period);
     if (!v0.complete()) {
-      why = "the map could not be evaluated at p = " + num(from_) + (v0.failure ? ": " + v0.failure->message : "");
-      out_.failure = v0.failure;
+      why = "the map could not be evaluated at p = " + num(p0) + (v0.failure ? ": " + v0.failure->message : "");
+      last_failure_ = v0.failure;
       return std::nullopt;
     }
     pt.metrics = v0.metrics;
     if (!jacobian(pt, &failure)) {
-      why = "the Jacobian at p = " + num(from_) + " could not be evaluated" + (failure ? ": " + failure->message : "");
-      out_.failure = failure;
+      why = "the Jacobian at p = " + num(p0) + " could not be evaluated" + (failure ? ": " + failure->message : "");
+      last_failure_ = failure;
       return std::nullopt;
     }
     const Eigen::Index d = z0.size();
@@ -396,19 +398,20 @@ public:
     Eigen::MatrixXd B = bordered(augmented(pt), Eigen::VectorXd::Unit(d + 1, d));
     Corrected c = correct(y, Eigen::VectorXd(), B, period);
     if (!c.converged) {
-      why = "no fixed point of period " + std::to_string(period) + " was found near the start at p = " + num(from_) +
+      why = "no fixed point of period " + std::to_string(period) + " was found near the state given at p = " + num(p0) +
             (c.failure ? " (an evaluation failed: " + c.failure->message + ")" : "");
-      out_.failure = c.failure;
+      last_failure_ = c.failure;
       return std::nullopt;
     }
-    c.point.branch = 0;
     if (!jacobian(c.point, &failure)) {
-      why = "the Jacobian at the fixed point at p = " + num(from_) + " could not be evaluated";
-      out_.failure = failure;
+      why = "the Jacobian at the fixed point at p = " + num(p0) + " could not be evaluated";
+      last_failure_ = failure;
       return std::nullopt;
     }
     return c.point;
   }
+  std::optional<NumericalFailure> last_failure_;  // the last evaluation that ended a branch or a start
+  bool stalled_ = false;                          // the last branch or start tried ended in a stall
 
   // The doubled branch from a period doubling: the period-2M map has a pitchfork there, its new branch
   // leaving along the eigenvector of μ = −1 at constant parameter.
@@ -479,7 +482,8 @@ private:
 
 ContinuationResult continue_fixed_points(const ParametrisedMap& map, const Eigen::VectorXd& z0, double from, double to,
                                          int period, const ContinuationSettings& settings,
-                                         const std::function<void(const ContinuationProgress&)>& on_point) {
+                                         const std::function<void(const ContinuationProgress&)>& on_point,
+                                         const ReseedFunction& reseed) {
   if (!std::isfinite(from) || !std::isfinite(to) || from == to)
     throw std::invalid_argument("the parameter's range must be two different finite numbers");
   if (z0.size() == 0) throw std::invalid_argument("an empty start state");
@@ -488,25 +492,48 @@ ContinuationResult continue_fixed_points(const ParametrisedMap& map, const Eigen
   Engine e(map, from, to, settings, on_point, out);
   e.set_scale(z0);
   std::string why;
-  std::optional<BranchPoint> first = e.first_point(z0, period, why);
+  std::optional<BranchPoint> first = e.first_point(z0, from, period, why);
   if (!first) {
-    out.branches.push_back({0, period, 0, why});
+    out.branches.push_back({0, period, 0, "the start", why});
+    out.failure = e.last_failure_;
     out.stopped = e.stop_requested();
     return out;
   }
   e.set_scale(first->z);
   const Eigen::Index d = z0.size();
   std::deque<std::size_t> doublings;  // indices into out.special still to be followed
-  auto run_branch = [&](BranchPoint start, const Eigen::VectorXd& hint) {
+  auto run_branch = [&](BranchPoint start, const Eigen::VectorXd& hint, const std::string& how) {
     const std::size_t special_before = out.special.size(), points_before = out.points.size();
     const int branch = start.branch, per = start.period;
     const std::string end = e.follow(std::move(start), hint);
-    out.branches.push_back({branch, per, static_cast<int>(out.points.size() - points_before), end});
+    out.branches.push_back({branch, per, static_cast<int>(out.points.size() - points_before), how, end});
     for (std::size_t k = special_before; k < out.special.size(); ++k)
       if (out.special[k].kind == SpecialKind::period_doubling) doublings.push_back(k);
   };
-  run_branch(*first, Eigen::VectorXd::Unit(d + 1, d));
+  const Eigen::VectorXd forward = Eigen::VectorXd::Unit(d + 1, d);
+  run_branch(*first, forward, "the start");
   int next_branch = 1;
+  // After a stall, the orbit is sought again a little further on (reseed), and followed from there.
+  double reached = 0.0;  // the furthest u the branches got to
+  const BranchPoint* furthest = nullptr;
+  for (int restarts = 0; reseed && e.stalled_ && restarts < settings.max_restarts && !e.stop_requested(); ++restarts) {
+    for (const BranchPoint& p : out.points)
+      if (e.scaled(p.parameter) >= reached) reached = e.scaled(p.parameter), furthest = &p;
+    reached += settings.restart_jump;
+    if (reached >= 1.0 || !furthest) break;
+    const double p_next = e.parameter(reached);
+    const Eigen::VectorXd near = furthest->z;
+    std::optional<Reseed> r = reseed(p_next, near);
+    if (!r) continue;
+    std::optional<BranchPoint> start = e.first_point(r->z, p_next, r->period, why);
+    if (!start) {
+      e.stalled_ = true;
+      continue;
+    }
+    start->branch = next_branch++;
+    run_branch(*start, forward, "restarted at p = " + num(p_next) + " after a stall: " + r->note);
+  }
+  if (e.stalled_ && e.last_failure_) out.failure = e.last_failure_;
   while (settings.switch_period_doubling && !doublings.empty() && next_branch <= settings.max_branches &&
          !out.stopped && !e.stop_requested()) {
     SpecialPoint& pd = out.special[doublings.front()];
@@ -525,7 +552,7 @@ ContinuationResult continue_fixed_points(const ParametrisedMap& map, const Eigen
     at_doubling.z = pd.z;
     at_doubling.parameter = pd.parameter;
     const Eigen::VectorXd hint = e.unknowns(*start) - e.unknowns(at_doubling);
-    run_branch(*start, hint);
+    run_branch(*start, hint, "from the period doubling at p = " + num(pd.parameter));
   }
   if (e.stop_requested()) out.stopped = true;
   return out;

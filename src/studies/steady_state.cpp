@@ -71,6 +71,7 @@ MapEvaluation SectionMap::operator()(const Eigen::VectorXd& z, int m) const {
   e.failure = r.failure;
   e.complete = !r.failure && r.summary.revolutions == m;
   if (e.complete) e.z = section_state(system_.beam, r.final_q, r.final_qd);
+  e.summary = r.summary;
   return e;
 }
 
