@@ -199,7 +199,7 @@ py::tuple wear(const std::optional<std::string>& path, const Values& overrides, 
                         py::bytes(wear_depth_csv(result, config.wear)));
 }
 
-py::tuple continue_orbits(const std::optional<std::string>& path, const Values& overrides, const std::string& parameter,
+py::tuple continue_orbits_py(const std::optional<std::string>& path, const Values& overrides, const std::string& parameter,
                           double from, double to, int period, double tolerance, double step, double max_step,
                           int max_points, bool doubling, int threads) {
   const Config base = load(path, overrides);
@@ -496,7 +496,7 @@ PYBIND11_MODULE(_core, m) {
         "wear_profile.csv's, representatives.csv's and spectrum.csv's text).");
   m.def("wear", &wear, py::arg("path"), py::arg("overrides"), py::arg("hours"), py::arg("steps"),
         "Wear over hours of operation: (summary dict, wear_history.csv's and wear_depth.csv's text).");
-  m.def("continue_orbits", &continue_orbits, py::arg("path"), py::arg("overrides"), py::arg("parameter"),
+  m.def("continue_orbits", &continue_orbits_py, py::arg("path"), py::arg("overrides"), py::arg("parameter"),
         py::arg("start"), py::arg("stop"), py::arg("period"), py::arg("tolerance"), py::arg("step"),
         py::arg("max_step"), py::arg("max_points"), py::arg("doubling"), py::arg("threads"),
         "Continuation of the periodic orbit in one key: (summary dict, branch.csv's text).");

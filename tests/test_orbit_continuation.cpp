@@ -28,20 +28,23 @@ ConfigAtValue loader(const std::vector<std::string>& sets, const std::string& ke
 
 }  // namespace
 
-// The damped base filament (5 modes, μ = 0.4, ζ = 0.03) from 550 to 620 rpm. The points are converged
-// to a relative residual of 1e-11 with rtol = 1e-11 (the map's noise ≈ 1e-11); a brute-force run to
-// a section distance of 1e-11 with multipliers |μ| ≤ 0.5 is within ≈ 2e-11 of its fixed point. The
-// issue's 1e-6 therefore holds with margin, while a point off the orbit by a wrong restart scale or
-// a wrong parameter (a case built at the wrong speed) is off by 1e-3 or more. The multipliers are
-// both central differences with δ = 1e-5‖z‖ at states 1e-10 apart: 1e-4 (the issue's) holds; a
-// Jacobian taken at the wrong speed differs by 1e-2.
+// A filament rubbing a two-lobe casing (examples/casing-rub.toml's: 2 % damping, μ = 0.02) from
+// 1000 to 1006 rpm, where its orbit rubs each lobe once a revolution with 4 impacts. The points are
+// converged to a relative residual of 1e-10 with rtol = 1e-11 (the map's noise ≈ 1e-11); a brute-force
+// run to a section distance of 1e-10 with multipliers |μ| ≤ 0.3 is within ≈ 1.5e-10 of its fixed
+// point. The 1e-6 therefore holds with margin, while a point off the orbit by a wrong
+// restart scale or a wrong parameter (a case built at another speed) is off by 1e-3 or more. The
+// multipliers are both central differences with δ = 1e-5‖z‖ at states 1e-10 apart: 1e-4 (the
+// issue's) holds; a Jacobian taken at the wrong speed differs by 1e-2.
 TEST(OrbitContinuation, StablePointsAreTheBruteForceSteadyStates) {
-  const std::vector<std::string> sets = {"beam.damping_ratio=0.03", "simulation.rtol=1e-11",
-                                         "simulation.steady_tolerance=1e-11"};
+  const std::vector<std::string> sets = {"surface.shape=\"casing\"", "surface.clearance_m=1e-4", "surface.lobes=2",
+                                         "surface.lobe_amplitude_m=3e-4", "surface.lobe_law=\"cosine\"",
+                                         "surface.friction=0.02", "beam.damping_ratio=0.02", "simulation.rtol=1e-11"};
   OrbitContinuationOptions o;
+  o.tolerance = 1e-10;
   o.parameter = "hub.speed_rpm";
-  o.from = 550;
-  o.to = 620;
+  o.from = 1000;
+  o.to = 1006;
   o.settings.threads = 2;
   o.settings.initial_step = 0.1;
   o.settings.max_step = 0.25;
@@ -49,13 +52,15 @@ TEST(OrbitContinuation, StablePointsAreTheBruteForceSteadyStates) {
   ASSERT_FALSE(run.result.points.empty()) << run.start_note;
   ASSERT_FALSE(run.result.failure) << run.result.failure->message;
   EXPECT_EQ(run.period, 1);
-  EXPECT_NEAR(run.result.points.back().parameter, 620.0, 1e-9);
+  EXPECT_NEAR(run.result.points.back().parameter, 1006.0, 1e-9);
+  EXPECT_EQ(run.result.branches.size(), 1u);
   int checked = 0;
   for (std::size_t k = 0; k < run.result.points.size(); k += 2) {
     const BranchPoint& p = run.result.points[k];
     if (!p.stable) continue;
     const Case c = build_case(load_config_string(
         "", with(sets, {"hub.speed_rpm=" + parameter_literal(p.parameter), "simulation.until_steady=true",
+                        "simulation.steady_tolerance=1e-10",
                         "simulation.steady_method=\"brute_force\"", "simulation.revolutions=400",
                         "simulation.multipliers=true"})));
     const PassResult b = run_case(c);

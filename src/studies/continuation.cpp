@@ -311,15 +311,19 @@ public:
       const Eigen::Index d = last.z.size();
       const double u = y[d], tu = t[d];
       bool final_step = false;
-      double step = h;
+      double step = h, u_end = 1.0;
       if (tu > 0 && u + step * tu > 1.0) {
         step = (1.0 - u) / tu;
         final_step = true;
-        if (step < 1e-9) return "reached the end of the range";
+      } else if (backward_ && tu < 0 && u + step * tu < 0.0) {
+        step = -u / tu;
+        final_step = true;
+        u_end = 0.0;
       }
+      if (final_step && step < 1e-9) return "reached the end of the range";
       Eigen::VectorXd y_pred = y + step * t;
-      // The last step lands on p = to itself: its corrector holds u = 1 instead of the arclength.
-      if (final_step) y_pred[d] = 1.0;
+      // The last step lands on the range's end itself: its corrector holds u there instead of the arclength.
+      if (final_step) y_pred[d] = u_end;
       const Eigen::VectorXd e_u = Eigen::VectorXd::Unit(d + 1, d);
       Corrected c = final_step ? correct(y_pred, Eigen::VectorXd(), bordered(augmented(last), e_u), last.period)
                                : correct(y_pred, t, bordered(augmented(last), t), last.period);
@@ -357,8 +361,9 @@ public:
       else if (its >= 5) h = std::max(step / 1.5, s_.min_step);
       else h = step;
       const double u_new = scaled(out_.points.back().parameter);
-      if (final_step || u_new >= 1.0 - 1e-9) return "reached p = " + num(parameter(1.0));
-      if (u_new < -1e-9) return "turned back and left the range at p = " + num(parameter(0.0));
+      if (final_step) return "reached p = " + num(parameter(u_end));
+      if (u_new >= 1.0 - 1e-9) return "reached p = " + num(parameter(1.0));
+      if (u_new < -1e-9) return (backward_ ? "reached p = " : "turned back and left the range at p = ") + num(parameter(0.0));
     }
   }
 
@@ -412,6 +417,7 @@ public:
   }
   std::optional<NumericalFailure> last_failure_;  // the last evaluation that ended a branch or a start
   bool stalled_ = false;                          // the last branch or start tried ended in a stall
+  bool backward_ = false;                         // the branch under way is followed toward `from`
 
   // The doubled branch from a period doubling: the period-2M map has a pitchfork there, its new branch
   // leaving along the eigenvector of μ = −1 at constant parameter.
@@ -493,6 +499,19 @@ ContinuationResult continue_fixed_points(const ParametrisedMap& map, const Eigen
   e.set_scale(z0);
   std::string why;
   std::optional<BranchPoint> first = e.first_point(z0, from, period, why);
+  std::string start_words = "the start";
+  double start_u = 0.0;
+  // No orbit at `from`: sought further on (reseed) in restart_jump steps; the branch found is then
+  // followed back toward `from` as well.
+  for (int tries = 0; !first && reseed && tries < settings.max_restarts && !e.stop_requested(); ++tries) {
+    start_u += settings.restart_jump;
+    if (start_u >= 1.0) break;
+    const double p = e.parameter(start_u);
+    std::optional<Reseed> r = reseed(p, z0);
+    if (!r) continue;
+    first = e.first_point(r->z, p, r->period, why);
+    if (first) start_words = "found at p = " + num(p) + " (none at " + num(from) + "): " + r->note;
+  }
   if (!first) {
     out.branches.push_back({0, period, 0, "the start", why});
     out.failure = e.last_failure_;
@@ -511,8 +530,14 @@ ContinuationResult continue_fixed_points(const ParametrisedMap& map, const Eigen
       if (out.special[k].kind == SpecialKind::period_doubling) doublings.push_back(k);
   };
   const Eigen::VectorXd forward = Eigen::VectorXd::Unit(d + 1, d);
-  run_branch(*first, forward, "the start");
   int next_branch = 1;
+  if (start_u > 0.0) {
+    e.backward_ = true;
+    run_branch(*first, -forward, start_words + "; followed back toward p = " + num(from));
+    e.backward_ = false;
+    first->branch = next_branch++;
+  }
+  run_branch(*first, forward, start_words);
   // After a stall, the orbit is sought again a little further on (reseed), and followed from there.
   double reached = 0.0;  // the furthest u the branches got to
   const BranchPoint* furthest = nullptr;

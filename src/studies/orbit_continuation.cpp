@@ -5,6 +5,7 @@
 #include "rotbeam/modal_analysis.hpp"
 #include "rotbeam/steady_state.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <chrono>
 #include <cmath>
@@ -75,7 +76,8 @@ private:
   std::deque<double> order_;
 };
 
-constexpr int kReseedRevolutions = 100;
+constexpr int kReseedRevolutions = 60;
+constexpr int kStartRevolutions = 100;  // the search at `from`; past it, the orbit is sought further on
 
 OrbitMetrics metrics_of(const MapEvaluation& e, double omega, int period) {
   OrbitMetrics m;
@@ -125,7 +127,7 @@ OrbitContinuation continue_orbits(const ConfigAtValue& config_at, const OrbitCon
   search.until_steady = true;
   search.steady_method = SteadyMethod::shooting;
   search.multipliers = false;
-  if (search.revolutions <= 0) search.revolutions = kDefaultSteadyRevolutionCap;
+  search.revolutions = search.revolutions > 0 ? std::min(search.revolutions, kStartRevolutions) : kStartRevolutions;
   search.end_angle_deg = start_case.beam->theta(0.0) * 180.0 / M_PI + 360.0 * search.revolutions;
   search.output_interval_s = 1e9;
   search.near_surface_gap_m = 0.0;
