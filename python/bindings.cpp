@@ -205,9 +205,9 @@ py::tuple continue_orbits_py(const std::optional<std::string>& path, const Value
   const Config base = load(path, overrides);
   if (base.brush) throw ConfigError("brush: continue_orbits() follows one filament; leave out the [brush] keys");
   require_known_key(parameter, "parameter");
-  if (!(step > 0) || !(max_step >= step) || !std::isfinite(max_step))
-    throw ConfigError("step = " + shortest(step) + ", max_step = " + shortest(max_step) +
-                      ": must be positive with max_step >= step");
+  if (!(step >= ContinuationSettings{}.min_step) || !(max_step >= step) || !std::isfinite(max_step))
+    throw ConfigError("step = " + shortest(step) + ", max_step = " + shortest(max_step) + ": must be at least " +
+                      shortest(ContinuationSettings{}.min_step) + " with max_step >= step");
   if (max_points < 2 || max_points > 100000)
     throw ConfigError("max_points = " + std::to_string(max_points) + ": must be 2 … 100000");
   if (tolerance < 0 || !std::isfinite(tolerance))

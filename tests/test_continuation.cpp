@@ -86,7 +86,7 @@ TEST(Continuation, FoldIsTurnedAndLocated) {
   const ContinuationResult r = continue_fixed_points(map, Eigen::VectorXd::Constant(1, 1.05), 1.0, -1.0, 1, s);
   const auto fold = of_kind(r, SpecialKind::fold);
   ASSERT_EQ(fold.size(), 1u);
-  // The cubic Hermite interpolant of p(s) is exact to O(h³) (h ≤ 0.05): 1e-4.
+  // The cubic Hermite interpolant of p(s) is exact to O(h³) (h ≤ 0.1 and p(s) quadratic near the fold): 1e-4.
   EXPECT_NEAR(fold[0]->parameter, 0.0, 1e-4);
   bool upper = false, lower = false;
   for (const BranchPoint& p : r.points) {
@@ -149,6 +149,53 @@ TEST(Continuation, GrazingIsWhereTheEventCountChanges) {
   EXPECT_EQ(a.metrics.impacts, 0);
   EXPECT_EQ(b.metrics.impacts, 1);
   EXPECT_NEAR(r.points.back().parameter, 0.9, 1e-12);
+}
+
+// x → (x + p)/2 (the fixed point x = p) cannot be evaluated below p = 0.05 nor inside (0.42, 0.47). With a
+// reseed that knows the fixed point, the start is found further on and followed back toward `from`
+// until the map fails, the branch stalls at the band and restarts past it, and the range's end is
+// reached: no point lies where the map fails, and every point is x = p.
+TEST(Continuation, StartSearchBackwardBranchAndRestartsPastAFailingBand) {
+  const auto fails = [](double p) { return p < 0.05 || (p > 0.42 && p < 0.47); };
+  const ParametrisedMap map = [fails](const Eigen::VectorXd& z, double p, int period) {
+    MapValue v;
+    if (fails(p)) {
+      v.failure = NumericalFailure{FailureKind::non_finite, 0.0, 0.0, "no map here"};
+      return v;
+    }
+    v.z = z;
+    for (int k = 0; k < period; ++k) v.z[0] = 0.5 * (v.z[0] + p);
+    return v;
+  };
+  int reseeds = 0;
+  const ReseedFunction reseed = [&reseeds](double p, const Eigen::VectorXd&) -> std::optional<Reseed> {
+    ++reseeds;
+    return Reseed{Eigen::VectorXd::Constant(1, p), 1, "exact"};
+  };
+  ContinuationSettings s;
+  s.tolerance = 1e-12;
+  const ContinuationResult r = continue_fixed_points(map, Eigen::VectorXd::Constant(1, 0.3), 0.0, 1.0, 1, s, {}, reseed);
+  ASSERT_FALSE(r.points.empty());
+  EXPECT_FALSE(r.failure);
+  EXPECT_GE(r.branches.size(), 3u);  // back toward from, forward to the band, restarted past it
+  EXPECT_NE(r.branches[0].start.find("found at p = "), std::string::npos) << r.branches[0].start;
+  EXPECT_NE(r.branches[0].start.find("followed back"), std::string::npos) << r.branches[0].start;
+  EXPECT_NE(r.branches.back().start.find("restarted"), std::string::npos) << r.branches.back().start;
+  double lowest = 1, highest = 0;
+  bool before_band = false, after_band = false;
+  for (const BranchPoint& p : r.points) {
+    EXPECT_FALSE(fails(p.parameter)) << p.parameter;
+    EXPECT_NEAR(p.z[0], p.parameter, 1e-10);
+    EXPECT_NEAR(p.multipliers[0].re, 0.5, 1e-8);
+    lowest = std::min(lowest, p.parameter);
+    highest = std::max(highest, p.parameter);
+    before_band |= p.parameter > 0.40 && p.parameter <= 0.42;
+    after_band |= p.parameter >= 0.47 && p.parameter < 0.5;
+  }
+  EXPECT_LT(lowest, 0.06);   // followed back to the failure below 0.05 (within the first try's 1 %)
+  EXPECT_EQ(highest, 1.0);   // the last step lands on `to`
+  EXPECT_TRUE(before_band && after_band);
+  EXPECT_LE(reseeds, 15);    // 0.01, … 0.06 at the start, 0.43 … 0.48 past the band
 }
 
 TEST(Continuation, RejectsAnEmptyRange) {

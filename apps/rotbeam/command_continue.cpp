@@ -26,7 +26,7 @@ struct ContinueCommandOptions {
   double from = NAN, to = NAN;
   int period = 0;
   double tolerance = 0;
-  double step = 0.02, max_step = 0.05;
+  double step = 0.02, max_step = 0.1;
   int max_points = 400;
   bool no_doubling = false;
   int jobs = 0;
@@ -62,9 +62,9 @@ void print_summary(const OrbitContinuation& run, const std::string& dir) {
 int run_continue_command(const ContinueCommandOptions& o) {
   const Config base = o.case_options.load_filament("continue");
   (void)base;
-  if (!(o.step > 0) || !(o.max_step >= o.step) || !std::isfinite(o.max_step))
-    throw ConfigError("--step " + number_text(o.step) + " --max-step " + number_text(o.max_step) +
-                      ": must be positive with --max-step ≥ --step");
+  if (!(o.step >= ContinuationSettings{}.min_step) || !(o.max_step >= o.step) || !std::isfinite(o.max_step))
+    throw ConfigError("--step " + number_text(o.step) + " --max-step " + number_text(o.max_step) + ": must be at least " +
+                      number_text(ContinuationSettings{}.min_step) + " with --max-step ≥ --step");
   if (o.max_points < 2 || o.max_points > 100000)
     throw ConfigError("--max-points " + std::to_string(o.max_points) + ": must be 2 … 100000");
   if (o.tolerance < 0 || !std::isfinite(o.tolerance))
@@ -87,9 +87,7 @@ int run_continue_command(const ContinueCommandOptions& o) {
     return load_config(co.config_path, overrides);
   };
   // The key and the range are checked before the folder is touched.
-  require_known_key(o.parameter, "--parameter");
-  config_at(parameter_literal(o.from));
-  config_at(parameter_literal(o.to));
+  check_orbit_continuation(config_at, options);
   std::unique_ptr<ContinuationFiles> files;
   try {
     files = std::make_unique<ContinuationFiles>(o.output_dir);
@@ -144,7 +142,7 @@ Command add_continue_command(CLI::App& app) {
   sub->add_option("-o,--output", opts->output_dir, "Output folder (created if needed)")->required()->check(non_empty_path());
   sub->add_option("--tolerance", opts->tolerance, "Relative residual of a point (default: simulation.steady_tolerance)");
   sub->add_option("--step", opts->step, "First step along the branch, in the range's fraction (default 0.02)");
-  sub->add_option("--max-step", opts->max_step, "Largest step (default 0.05)");
+  sub->add_option("--max-step", opts->max_step, "Largest step (default 0.1)");
   sub->add_option("--max-points", opts->max_points, "Points per branch at most (default 400)");
   sub->add_flag("--no-doubling", opts->no_doubling, "Do not follow the doubled branch from a period doubling");
   sub->add_option("-j,--jobs", opts->jobs, "Threads for the Jacobian's map evaluations (default: all cores)");

@@ -58,7 +58,7 @@ struct ContinuationSettings {
   bool switch_period_doubling = true;  // follow the doubled branch from each period doubling
   int max_branches = 4;            // doubled branches followed at most
   double restart_jump = 0.01;      // after a stall, the orbit is sought again this far on (in u) …
-  int max_restarts = 50;           // … at most this many times (only with a reseed function)
+  int max_restarts = 100;          // … at most this many times, and never past the range (only with a reseed function)
   int threads = 1;                 // for the Jacobian's columns
   const StopToken* stop = nullptr;
 };
@@ -69,6 +69,7 @@ struct BranchPoint {
   int period = 1;                  // M
   double parameter = 0;            // p
   Eigen::VectorXd z;               // the fixed point
+  Eigen::VectorXd image;           // P^M(z) as evaluated there (z to the tolerance)
   std::vector<Multiplier> multipliers;  // eigenvalues of ∂P^M/∂z, largest magnitude first
   bool stable = false;             // every |μ| < 1
   double arclength = 0;            // along its branch, in the scaled unknowns

@@ -45,12 +45,16 @@ struct OrbitContinuation {
 /// value). Throws ConfigError naming the key when the value is refused.
 using ConfigAtValue = std::function<Config(const std::string& literal)>;
 
-/// Continues the orbits: the steady state at `from` (shooting from the configuration's start, up to
-/// simulation.revolutions or 200) is the first point. Throws ConfigError naming the key for an
+/// Continues the orbits: the steady state at `from` (shooting from the configuration's start, at most
+/// 100 revolutions) is the first point. Throws ConfigError naming the key for an
 /// unknown or non-numeric key, a brush, a key that changes the mode count, or an empty range.
 /// Numerical trouble ends a branch and is described in the result (never thrown).
 OrbitContinuation continue_orbits(const ConfigAtValue& config_at, const OrbitContinuationOptions& options,
                                   const std::function<void(const ContinuationProgress&)>& on_point = {});
+
+/// The input checks of continue_orbits alone (before any work): the key, the range, the period, a
+/// brush, a key that changes the mode count. Throws ConfigError naming the option or key.
+void check_orbit_continuation(const ConfigAtValue& config_at, const OrbitContinuationOptions& options);
 
 /// The engine-order crossings of orders 1 … max_order of the beam of `base` over [lo, hi] rpm (its
 /// natural frequencies on a grid of 241 speeds, crossings located by linear interpolation).

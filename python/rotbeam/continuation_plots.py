@@ -62,8 +62,11 @@ def _brute_force(path, key):
     table = read_csv(sweep, error=DamagedContinuation)
     if key not in table:
         raise DamagedContinuation(f"{sweep}: has no column {key} (the continued key)")
-    steady = np.asarray(table.get("steady_after_revolutions", np.ones(len(table[key]))), float) > 0
-    force = np.asarray(table.get("last_revolution_peak_normal_force_n", table.get("peak_normal_force_n")), float)
+    steady = np.asarray(table.get("steady_after_revolutions", np.zeros(len(table[key]))), float) > 0
+    force = table.get("last_revolution_peak_normal_force_n", table.get("peak_normal_force_n"))
+    if force is None:
+        raise DamagedContinuation(f"{sweep}: has no peak normal force column to draw")
+    force = np.asarray(force, float)
     return np.asarray(table[key], float), force, steady
 
 
@@ -115,10 +118,10 @@ def continuation_figure(summary, branch, brute_force=None):
                 a_force.annotate(f"{c['order']}×, mode {c['mode']}", (c["speed_rpm"], 1.0),
                                  xycoords=("data", "axes fraction"), rotation=90, fontsize=6, va="top", ha="right",
                                  color="0.45")
-        if crossings:
-            a_mu.plot([], [], ":", color="0.6", label="engine-order crossing (Campbell)")
         a_force.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8)
-        a_mu.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8)
+        if any(lo <= c["speed_rpm"] <= hi for c in crossings):
+            a_mu.plot([], [], ":", color="0.6", label="engine-order crossing (Campbell)")
+            a_mu.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8)
     a_force.set_ylabel("peak normal force over a period (N)")
     a_power.set_ylabel("mean hub power (W)")
     a_mu.set_ylabel("largest |multiplier| (-)")

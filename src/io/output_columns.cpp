@@ -101,13 +101,13 @@ std::vector<OutputFile> make_files() {
   // `rotbeam continue` (docs/continuation.md): 2n columns per {i}, the section state's n + n components.
   files.push_back(
       {"branch.csv",
-       {integer("branch", "0: the branch from --from; 1, 2, …: branches followed from period doublings"),
+       {integer("branch", "0, 1, …: branches in the order followed (summary.json's `branches` says how each began)"),
         integer("period", "revolutions per orbit, M"),
         number("parameter", "the key's", "the continued key's value"),
         {"stable", "", ColumnKind::boolean, "whether every multiplier has |μ| < 1", {}},
         number("max_abs_multiplier", "1", "the largest |μ|"),
         number("arclength", "1", "along the branch in the scaled unknowns (docs/continuation.md)"),
-        integer("corrector_iterations", "map evaluations the corrector took"),
+        integer("corrector_iterations", "Newton iterations the corrector took (its map evaluations less one)"),
         integer("jacobian_event_changes", "evaluations of the Jacobian's stencil whose impacts or episodes differed"),
         integer("impacts", "impacts over one period"),
         integer("contact_episodes", "sustained-contact episodes over one period"),

@@ -100,7 +100,12 @@ public:
     const Eigen::Index d = pt.z.size();
     const double dz = s_.jacobian_step * std::max(pt.z.norm(), 1e-6);
     const double dp = s_.jacobian_step * std::abs(span_);
-    std::vector<MapValue> v(static_cast<std::size_t>(2 * d + 2));
+    // The parameter's stencil stays within [from, to] (a key's values may end there: a friction from
+    // 0): one-sided with the point's own image at the ends.
+    const double u = scaled(pt.parameter), du = s_.jacobian_step;
+    const bool one_sided = pt.image.size() == pt.z.size() && (u + du > 1.0 || u - du < 0.0);
+    const double toward = span_ > 0 ? (u + du > 1.0 ? -1.0 : 1.0) : (u + du > 1.0 ? 1.0 : -1.0);
+    std::vector<MapValue> v(static_cast<std::size_t>(2 * d + (one_sided ? 1 : 2)));
     JobRunnerOptions jo;
     jo.threads = std::max(1, s_.threads);
     jo.stop = s_.stop;
@@ -110,7 +115,7 @@ public:
       const Eigen::Index c = static_cast<Eigen::Index>(j / 2);
       const double sign = j % 2 == 0 ? 1.0 : -1.0;
       if (c < d) z[c] += sign * dz;
-      else p += sign * dp;
+      else p += one_sided ? toward * dp : sign * dp;
       v[j] = map_(z, p, pt.period);
     }, jo);
     out_.map_evaluations += static_cast<int>(ran.size());
@@ -127,7 +132,8 @@ public:
         ++pt.jacobian_event_changes;
     }
     for (Eigen::Index c = 0; c < d; ++c) pt.jacobian.col(c) = (v[2 * c].z - v[2 * c + 1].z) / (2.0 * dz);
-    pt.parameter_derivative = (v[2 * d].z - v[2 * d + 1].z) / (2.0 * dp);
+    pt.parameter_derivative = one_sided ? Eigen::VectorXd((v[2 * d].z - pt.image) / (toward * dp))
+                                        : Eigen::VectorXd((v[2 * d].z - v[2 * d + 1].z) / (2.0 * dp));
     pt.multipliers = floquet_multipliers(pt.jacobian);
     pt.stable = !pt.multipliers.empty() && pt.multipliers.front().magnitude() < 1.0;
     return true;
@@ -194,6 +200,7 @@ public:
         c.point.period = period;
         c.point.parameter = p;
         c.point.z = z;
+        c.point.image = v.z;
         c.point.metrics = v.metrics;
         c.point.corrector_iterations = it;
         return c;
@@ -251,7 +258,7 @@ public:
       const double h01 = -2 * tau * tau * tau + 3 * tau * tau, h11 = tau * tau * tau - tau * tau;
       const double u = h00 * u0 + h10 * m0 + h01 * u1 + h11 * m1;
       // The state is taken along the chord at the same fraction of the step; the parameter from the cubic.
-      add(SpecialKind::fold, tau, {nearest_real(b.multipliers, 1.0), 0.0},
+      add(SpecialKind::fold, tau, {1.0, 0.0},
           "the branch turns back at p = " + num(parameter(u)) + " (a multiplier through +1)");
       out_.special.back().parameter = parameter(u);
     }
@@ -264,14 +271,15 @@ public:
       const double r0 = nearest_real(a.multipliers, -1.0), r1 = nearest_real(b.multipliers, -1.0);
       const double theta = std::isfinite(r0 - r1) && r0 != r1 ? (r0 + 1.0) / (r0 - r1) : 0.5;
       add(SpecialKind::period_doubling, theta, {-1.0, 0.0},
-          std::string("a real multiplier passes −1: ") + (r1 < -1.0 ? "the orbit loses" : "the orbit gains") +
-              " its stability to a period-" + std::to_string(2 * b.period) + " orbit");
+          "a real multiplier passes −1: a period-" + std::to_string(2 * b.period) + " orbit branches off here");
     }
-    if (complex_pairs_outside(a.multipliers) != complex_pairs_outside(b.multipliers)) {
-      const auto m0 = pair_nearest_circle(a.multipliers), m1 = pair_nearest_circle(b.multipliers);
+    const auto m0 = pair_nearest_circle(a.multipliers), m1 = pair_nearest_circle(b.multipliers);
+    // A pair that crosses the circle (not one that meets the real axis outside it and splits there).
+    if (complex_pairs_outside(a.multipliers) != complex_pairs_outside(b.multipliers) && m0 && m1 &&
+        (m0->magnitude() - 1.0) * (m1->magnitude() - 1.0) < 0) {
       double theta = 0.5;
       Multiplier mu{NAN, NAN};
-      if (m0 && m1 && m0->magnitude() != m1->magnitude()) {
+      if (m0->magnitude() != m1->magnitude()) {
         theta = (m0->magnitude() - 1.0) / (m0->magnitude() - m1->magnitude());
         const double th = std::clamp(theta, 0.0, 1.0);
         mu = {m0->re + th * (m1->re - m0->re), m0->im + th * (m1->im - m0->im)};
@@ -393,6 +401,7 @@ public:
       return std::nullopt;
     }
     pt.metrics = v0.metrics;
+    pt.image = v0.z;
     if (!jacobian(pt, &failure)) {
       why = "the Jacobian at p = " + num(p0) + " could not be evaluated" + (failure ? ": " + failure->message : "");
       last_failure_ = failure;
@@ -451,6 +460,10 @@ public:
     // corrector starts from the Jacobian at the predicted point, a step along v, where it does not.
     for (double h : {s_.initial_step, s_.initial_step / 4, s_.initial_step / 16}) {
       for (double sign : {1.0, -1.0}) {
+        if (stop_requested()) {
+          why = "stopped on request before the doubled branch was found";
+          return std::nullopt;
+        }
         Eigen::VectorXd t = Eigen::VectorXd::Zero(d + 1);
         t.head(d) = sign * v;
         const Eigen::VectorXd y_pred = y0 + h * t;
@@ -459,6 +472,7 @@ public:
         const MapValue at_guess = evaluate(guess.z, guess.parameter, guess.period);
         if (!at_guess.complete()) continue;
         guess.metrics = at_guess.metrics;
+        guess.image = at_guess.z;
         std::optional<NumericalFailure> failure;
         if (!jacobian(guess, &failure)) continue;
         Corrected c = correct(y_pred, t, bordered(augmented(guess), t), pd_point.period);
@@ -503,7 +517,8 @@ ContinuationResult continue_fixed_points(const ParametrisedMap& map, const Eigen
   double start_u = 0.0;
   // No orbit at `from`: sought further on (reseed) in restart_jump steps; the branch found is then
   // followed back toward `from` as well.
-  for (int tries = 0; !first && reseed && tries < settings.max_restarts && !e.stop_requested(); ++tries) {
+  const int jumps = static_cast<int>(std::ceil(1.0 / settings.restart_jump));
+  for (int tries = 0; !first && reseed && tries < std::min(settings.max_restarts, jumps) && !e.stop_requested(); ++tries) {
     start_u += settings.restart_jump;
     if (start_u >= 1.0) break;
     const double p = e.parameter(start_u);
@@ -539,15 +554,15 @@ ContinuationResult continue_fixed_points(const ParametrisedMap& map, const Eigen
   }
   run_branch(*first, forward, start_words);
   // After a stall, the orbit is sought again a little further on (reseed), and followed from there.
-  double reached = 0.0;  // the furthest u the branches got to
-  const BranchPoint* furthest = nullptr;
-  for (int restarts = 0; reseed && e.stalled_ && restarts < settings.max_restarts && !e.stop_requested(); ++restarts) {
+  double reached = start_u;  // the furthest u the branches got to
+  Eigen::VectorXd near = first->z;  // the state there
+  for (int restarts = 0; reseed && e.stalled_ && restarts < std::min(settings.max_restarts, jumps) && !e.stop_requested();
+       ++restarts) {
     for (const BranchPoint& p : out.points)
-      if (e.scaled(p.parameter) >= reached) reached = e.scaled(p.parameter), furthest = &p;
+      if (e.scaled(p.parameter) > reached) reached = e.scaled(p.parameter), near = p.z;
     reached += settings.restart_jump;
-    if (reached >= 1.0 || !furthest) break;
+    if (reached >= 1.0) break;
     const double p_next = e.parameter(reached);
-    const Eigen::VectorXd near = furthest->z;
     std::optional<Reseed> r = reseed(p_next, near);
     if (!r) continue;
     std::optional<BranchPoint> start = e.first_point(r->z, p_next, r->period, why);
@@ -559,8 +574,13 @@ ContinuationResult continue_fixed_points(const ParametrisedMap& map, const Eigen
     run_branch(*start, forward, "restarted at p = " + num(p_next) + " after a stall: " + r->note);
   }
   if (e.stalled_ && e.last_failure_) out.failure = e.last_failure_;
-  while (settings.switch_period_doubling && !doublings.empty() && next_branch <= settings.max_branches &&
-         !out.stopped && !e.stop_requested()) {
+  int doubled = 0;
+  while (settings.switch_period_doubling && !doublings.empty() && !out.stopped && !e.stop_requested()) {
+    if (doubled == settings.max_branches) {
+      for (std::size_t k : doublings)
+        out.special[k].note += "; not followed: " + std::to_string(settings.max_branches) + " doubled branches were";
+      break;
+    }
     SpecialPoint& pd = out.special[doublings.front()];
     doublings.pop_front();
     std::string why_not;
@@ -572,6 +592,7 @@ ContinuationResult continue_fixed_points(const ParametrisedMap& map, const Eigen
     start->branch = next_branch;
     pd.doubled_branch = next_branch;
     ++next_branch;
+    ++doubled;
     // Away from the doubling along the new branch: the direction the corrector moved in.
     BranchPoint at_doubling;
     at_doubling.z = pd.z;

@@ -95,11 +95,13 @@ OrbitMetrics metrics_of(const MapEvaluation& e, double omega, int period) {
 
 }  // namespace
 
-OrbitContinuation continue_orbits(const ConfigAtValue& config_at, const OrbitContinuationOptions& options,
-                                  const std::function<void(const ContinuationProgress&)>& on_point) {
-  const auto wall0 = std::chrono::steady_clock::now();
+void check_orbit_continuation(const ConfigAtValue& config_at, const OrbitContinuationOptions& options) {
   require_known_key(options.parameter, "--parameter");
   const std::string& key = options.parameter;
+  for (const auto& k : describe_config_keys())
+    if (k["name"] == key && k["type"].get<std::string>().find("number") == std::string::npos)
+      throw ConfigError("--parameter " + key + ": a key of " + k["type"].get<std::string>() +
+                        " values; continuation needs a number that varies continuously");
   if (!std::isfinite(options.from) || !std::isfinite(options.to))
     throw ConfigError("--from/--to: must be finite numbers");
   if (options.from == options.to)
@@ -107,19 +109,27 @@ OrbitContinuation continue_orbits(const ConfigAtValue& config_at, const OrbitCon
                       ": the range of " + key + " is empty");
   if (options.period < 0 || options.period > 64)
     throw ConfigError("--period " + std::to_string(options.period) + ": must be 1 … 64 revolutions (0: the steady state's)");
+  const Config from = config_at(parameter_literal(options.from));
+  const Config to = config_at(parameter_literal(options.to));
+  if (from.brush)
+    throw ConfigError("brush.*: continuation follows one filament's orbits; give a configuration without [brush]");
+  const int n_from = build_case(from).beam->modes(), n_to = build_case(to).beam->modes();
+  if (n_from != n_to)
+    throw ConfigError(key + ": changes the number of coordinates (" + std::to_string(n_from) + " at " +
+                      parameter_literal(options.from) + ", " + std::to_string(n_to) + " at " +
+                      parameter_literal(options.to) + "): an orbit cannot be continued across it");
+}
+
+OrbitContinuation continue_orbits(const ConfigAtValue& config_at, const OrbitContinuationOptions& options,
+                                  const std::function<void(const ContinuationProgress&)>& on_point) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  check_orbit_continuation(config_at, options);
+  const std::string& key = options.parameter;
   OrbitContinuation out;
   out.options = options;
   out.config_from = config_at(parameter_literal(options.from));
-  const Config config_to = config_at(parameter_literal(options.to));
-  if (out.config_from.brush)
-    throw ConfigError("brush.*: continuation follows one filament's orbits; give a configuration without [brush]");
   const Case start_case = build_case(out.config_from);
-  const Case end_case = build_case(config_to);
   out.modes = start_case.beam->modes();
-  if (end_case.beam->modes() != out.modes)
-    throw ConfigError(key + ": changes the number of coordinates (" + std::to_string(out.modes) + " at " +
-                      parameter_literal(options.from) + ", " + std::to_string(end_case.beam->modes()) + " at " +
-                      parameter_literal(options.to) + "): an orbit cannot be continued across it");
   const StopToken* stop = options.settings.stop;
 
   // 1. The start: the steady state at `from` by shooting from the configuration's start.
@@ -159,13 +169,19 @@ OrbitContinuation continue_orbits(const ConfigAtValue& config_at, const OrbitCon
     std::shared_ptr<const Case> c;
     try {
       c = cases.at(p);
-    } catch (const ConfigError& e) {
+    } catch (const std::exception& e) {  // a value the key refuses, or the model cannot be built there
       v.failure = NumericalFailure{FailureKind::initial_state, 0.0, 0.0, e.what()};
       return v;
     }
     const System system = c->system();  // SectionMap keeps a reference to it
     const SectionMap section(system, c->options, stop);
-    const MapEvaluation e = section(z, period);
+    MapEvaluation e;
+    try {
+      e = section(z, period);
+    } catch (const std::exception& x) {
+      v.failure = NumericalFailure{FailureKind::non_finite, 0.0, 0.0, x.what()};
+      return v;
+    }
     v.failure = e.failure;
     if (!e.complete) return v;
     v.z = e.z;
@@ -179,7 +195,7 @@ OrbitContinuation continue_orbits(const ConfigAtValue& config_at, const OrbitCon
     std::shared_ptr<const Case> c;
     try {
       c = cases.at(p);
-    } catch (const ConfigError&) {
+    } catch (const std::exception&) {
       return std::nullopt;
     }
     const int n = c->beam->modes();
@@ -197,7 +213,12 @@ OrbitContinuation continue_orbits(const ConfigAtValue& config_at, const OrbitCon
     o.output_interval_s = 1e9;
     o.near_surface_gap_m = 0.0;
     DiscardSink sink;
-    const PassResult r = run_to_steady_state(c->system(), ic, o, {&sink, stop, {}});
+    PassResult r;
+    try {
+      r = run_to_steady_state(c->system(), ic, o, {&sink, stop, {}});
+    } catch (const std::exception&) {
+      return std::nullopt;
+    }
     const SteadyState& st = r.summary.steady_state;
     if (r.failure || !st.reached) return std::nullopt;
     return Reseed{section_state(*c->beam, r.final_q, r.final_qd), st.period_revolutions, st.note};
@@ -205,6 +226,8 @@ OrbitContinuation continue_orbits(const ConfigAtValue& config_at, const OrbitCon
   ContinuationSettings settings = options.settings;
   settings.tolerance = options.tolerance > 0 ? options.tolerance : out.config_from.simulation.steady_tolerance;
   out.result = continue_fixed_points(map, z0, options.from, options.to, out.period, settings, on_point, reseed);
+  // The first branch's period: the start found further on may have another than the one sought.
+  if (!out.result.points.empty()) out.period = out.result.points.front().period;
   if (key == "hub.speed_rpm")
     out.crossings = engine_order_crossings(out.config_from.beam, std::min(options.from, options.to),
                                            std::max(options.from, options.to));
