@@ -104,9 +104,11 @@ def continuation_figure(summary, branch, brute_force=None):
             seen.add(label)
         if brute_force is not None:
             bx, bf, bsteady = brute_force
-            a_force.plot(bx[bsteady], bf[bsteady], "o", color="0.5", ms=3, label="brute force: steady")
-            a_force.plot(bx[~bsteady], bf[~bsteady], "o", color="0.5", ms=3, mfc="none",
-                         label="brute force: not steady (last revolution)")
+            if bsteady.any():
+                a_force.plot(bx[bsteady], bf[bsteady], "o", color="0.5", ms=3, label="brute force: steady")
+            if (~bsteady).any():
+                a_force.plot(bx[~bsteady], bf[~bsteady], "o", color="0.5", ms=3, mfc="none",
+                             label="brute force: not steady (last revolution)")
         for ax in (a_force, a_power, a_mu):
             ax.grid(alpha=0.3)
         crossings = summary.get("engine_order_crossings", [])
@@ -127,11 +129,13 @@ def continuation_figure(summary, branch, brute_force=None):
     a_mu.set_ylabel("largest |multiplier| (-)")
     a_mu.set_xlabel(f"{key} ({_unit(key)})")
     c = summary["config"]
-    branches = "; ".join(f"branch {b['branch']} (period {b['period']}): {b['points']} points, {b['end']}"
-                         for b in summary["branches"])
-    fig.suptitle(f"Continuation in {key}: {summary['points']} orbits, {summary['stable_points']} stable, "
-                 f"{summary['map_evaluations']} map evaluations, {summary['wall_time_s']:.0f} s; "
-                 f"{c['beam']['modes']} modes\n{branches}"[:400], fontsize=9)
+    stalled = sum("stalled" in b["end"] for b in summary["branches"])
+    branches = (f"{len(summary['branches'])} branch" + ("es" if len(summary["branches"]) != 1 else "") +
+                (f", {stalled} stalled where the map is not smooth (summary.json says where)" if stalled else ""))
+    incomplete = "" if summary.get("complete", True) else "; interrupted: the orbits found so far"
+    fig.suptitle(f"Continuation in {key} from {summary['from']:g} to {summary['to']:g}: {summary['points']} orbits, "
+                 f"{summary['stable_points']} stable; {c['beam']['modes']} modes\n{branches}; "
+                 f"{summary['map_evaluations']} map evaluations, {summary['wall_time_s']:.0f} s{incomplete}", fontsize=9)
     fig.tight_layout()
     return fig
 
