@@ -50,6 +50,9 @@ private:
   mutable int evaluations_ = 0, revolutions_run_ = 0;
 };
 
+/// `base` with the flexible start of section state z = (q/L, q̇/(ωL)) (section_state's inverse).
+InitialConditions section_start(const BeamModel& beam, const Eigen::VectorXd& z, InitialConditions base = {});
+
 /// The eigenvalues of a map's Jacobian, largest magnitude first.
 std::vector<Multiplier> floquet_multipliers(const Eigen::MatrixXd& jacobian);
 

@@ -79,6 +79,20 @@ private:
 constexpr int kReseedRevolutions = 60;
 constexpr int kStartRevolutions = 100;  // the search at `from`; past it, the orbit is sought further on
 
+// The options of a steady-state search by shooting of at most `revolutions` revolutions, its rows
+// discarded (the start, and the reseeds past a stall).
+PassOptions orbit_search(const Case& c, int revolutions) {
+  PassOptions o = c.options;
+  o.until_steady = true;
+  o.steady_method = SteadyMethod::shooting;
+  o.multipliers = false;
+  o.revolutions = revolutions;
+  o.end_angle_deg = c.beam->theta(0.0) * 180.0 / M_PI + 360.0 * revolutions;
+  o.output_interval_s = 1e9;
+  o.near_surface_gap_m = 0.0;
+  return o;
+}
+
 OrbitMetrics metrics_of(const MapEvaluation& e, double omega, int period) {
   OrbitMetrics m;
   m.impacts = e.impacts;
@@ -133,14 +147,8 @@ OrbitContinuation continue_orbits(const ConfigAtValue& config_at, const OrbitCon
   const StopToken* stop = options.settings.stop;
 
   // 1. The start: the steady state at `from` by shooting from the configuration's start.
-  PassOptions search = start_case.options;
-  search.until_steady = true;
-  search.steady_method = SteadyMethod::shooting;
-  search.multipliers = false;
-  search.revolutions = search.revolutions > 0 ? std::min(search.revolutions, kStartRevolutions) : kStartRevolutions;
-  search.end_angle_deg = start_case.beam->theta(0.0) * 180.0 / M_PI + 360.0 * search.revolutions;
-  search.output_interval_s = 1e9;
-  search.near_surface_gap_m = 0.0;
+  const int cap = start_case.options.revolutions;
+  const PassOptions search = orbit_search(start_case, cap > 0 ? std::min(cap, kStartRevolutions) : kStartRevolutions);
   DiscardSink discard;
   const PassResult found = run_to_steady_state(start_case.system(), start_case.initial, search, {&discard, stop, {}});
   const SteadyState& st = found.summary.steady_state;
@@ -198,20 +206,8 @@ OrbitContinuation continue_orbits(const ConfigAtValue& config_at, const OrbitCon
     } catch (const std::exception&) {
       return std::nullopt;
     }
-    const int n = c->beam->modes();
-    const double L = c->beam->beam_length(), omega = c->beam->hub_motion().omega;
-    InitialConditions ic = c->initial;
-    ic.rigid_start = false;
-    ic.q0 = z_near.head(n) * L;
-    ic.qd0 = z_near.tail(n) * (omega * L);
-    PassOptions o = c->options;
-    o.until_steady = true;
-    o.steady_method = SteadyMethod::shooting;
-    o.multipliers = false;
-    o.revolutions = kReseedRevolutions;
-    o.end_angle_deg = c->beam->theta(0.0) * 180.0 / M_PI + 360.0 * o.revolutions;
-    o.output_interval_s = 1e9;
-    o.near_surface_gap_m = 0.0;
+    const InitialConditions ic = section_start(*c->beam, z_near, c->initial);
+    const PassOptions o = orbit_search(*c, kReseedRevolutions);
     DiscardSink sink;
     PassResult r;
     try {

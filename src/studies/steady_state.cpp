@@ -13,14 +13,6 @@ namespace rotbeam {
 
 namespace {
 
-void set_modal_state(const BeamModel& beam, const Eigen::VectorXd& z, InitialConditions& ic) {
-  const int n = beam.modes();
-  const double L = beam.beam_length(), omega = beam.hub_motion().omega;
-  ic.rigid_start = false;
-  ic.q0 = z.head(n) * L;
-  ic.qd0 = z.tail(n) * (omega * L);
-}
-
 std::string period_words(int m) {
   return m == 1 ? std::string("periodic every revolution") : "periodic every " + std::to_string(m) + " revolutions";
 }
@@ -47,6 +39,15 @@ std::string stability_words(const std::vector<Multiplier>& mu) {
 
 }  // namespace
 
+InitialConditions section_start(const BeamModel& beam, const Eigen::VectorXd& z, InitialConditions base) {
+  const int n = beam.modes();
+  const double L = beam.beam_length(), omega = beam.hub_motion().omega;
+  base.rigid_start = false;
+  base.q0 = z.head(n) * L;
+  base.qd0 = z.tail(n) * (omega * L);
+  return base;
+}
+
 SectionMap::SectionMap(const System& system, const PassOptions& options, const StopToken* stop)
     : system_(system), options_(options), stop_(stop) {
   options_.until_steady = false;
@@ -56,8 +57,7 @@ SectionMap::SectionMap(const System& system, const PassOptions& options, const S
 }
 
 MapEvaluation SectionMap::operator()(const Eigen::VectorXd& z, int m) const {
-  InitialConditions ic;
-  set_modal_state(system_.beam, z, ic);
+  const InitialConditions ic = section_start(system_.beam, z);
   PassOptions o = options_;
   o.revolutions = m;
   o.end_angle_deg = system_.beam.theta(0.0) * 180.0 / M_PI + 360.0 * m;
@@ -385,8 +385,7 @@ PassResult shooting(const System& system, const InitialConditions& initial, cons
       add_multipliers(map, z_star, m, st);
     }
   }
-  InitialConditions orbit_start;
-  set_modal_state(system.beam, z_star, orbit_start);
+  const InitialConditions orbit_start = section_start(system.beam, z_star);
   PassOptions orbit = options;
   orbit.until_steady = false;
   orbit.revolutions = m;
