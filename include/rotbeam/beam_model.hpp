@@ -132,6 +132,16 @@ public:
   virtual double tip_excursion_bound(const Eigen::Ref<const Eigen::VectorXd>& q,
                                      const Eigen::Ref<const Eigen::VectorXd>& qd, BeamWorkspace& ws) const = 0;
 
+  /// q̈ = −M⁻¹Ψ of free flight into qdd (size n) with its derivatives ∂q̈/∂q [1/s²] into jq and
+  /// ∂q̈/∂q̇ [1/s] into jqd (n × n), in closed form; false where the model has none (then the caller
+  /// differentiates q̈ numerically, tangent.hpp). Overwrites the workspace.
+  virtual bool free_flight_jacobian(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qd,
+                                    BeamWorkspace& ws, Eigen::Ref<Eigen::VectorXd> qdd, Eigen::Ref<Eigen::MatrixXd> jq,
+                                    Eigen::Ref<Eigen::MatrixXd> jqd) const {
+    (void)q, (void)qd, (void)ws, (void)qdd, (void)jq, (void)jqd;
+    return false;
+  }
+
   /// The coordinates of the straight filament turning steadily with the hub (the state of a rigid
   /// turn, docs/model.md §9) into q (size n): zero for an inextensible filament, the centrifugal stretch
   /// for an extensible one (extensible_beam.hpp).

@@ -274,6 +274,21 @@ public:
   /// The penetration δ [m] up to which the law's theory holds; 0 for a law without penetration (the
   /// rigid law). The pass warns and marks its validity "edge" where δ goes beyond it.
   virtual double largest_valid_penetration() const { return 0.0; }
+  /// The impact the law applies at a touch with approach speed (Ċ⁻ > 0): q̇⁻ → q̇⁺ in place at (t, q).
+  /// The variational equations differentiate it (tangent.hpp). Throws std::logic_error for a law
+  /// without impacts (the default), std::domain_error where the tip does not approach.
+  virtual ImpactResult momentum_jump(const System& system, double t, const Eigen::Ref<const Eigen::VectorXd>& q,
+                                     Eigen::Ref<Eigen::VectorXd> qd, BeamWorkspace& ws, TipKinematics& tip) const;
+  /// The episode's parameters a touch at (t, q, q̇) sets as continuous functions of the state (the
+  /// compliant law's damping from the approach speed) into `episode`; false (the default) where the
+  /// law's episodes carry nothing the state sets continuously. The variational equations
+  /// differentiate it (tangent.hpp). Overwrites tip.
+  virtual bool episode_at_touch(const System& system, double t, const Eigen::Ref<const Eigen::VectorXd>& q,
+                                const Eigen::Ref<const Eigen::VectorXd>& qd, ContactEpisode& episode,
+                                TipKinematics& tip) const {
+    (void)system, (void)t, (void)q, (void)qd, (void)episode, (void)tip;
+    return false;
+  }
   /// The failure an inadmissible evaluation means, and its message.
   virtual FailureKind failure_kind(const ContactEvaluation& e) const;
   virtual std::string failure_message(const ContactEvaluation& e) const;

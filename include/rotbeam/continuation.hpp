@@ -36,6 +36,10 @@ struct OrbitMetrics {
 /// One evaluation of the map: P^M(z; p), or why it could not be had.
 struct MapValue {
   Eigen::VectorXd z;  // empty when the evaluation did not complete
+  // ∂P^M/∂z where the map was asked for it (a ParametrisedJacobian) and could give it; empty otherwise,
+  // and then why in jacobian_fallback.
+  Eigen::MatrixXd jacobian;
+  std::string jacobian_fallback;
   OrbitMetrics metrics;
   std::optional<NumericalFailure> failure;
   bool complete() const { return z.size() > 0; }
@@ -44,6 +48,9 @@ struct MapValue {
 /// P^M(z; p): the map after `period` applications at parameter p. Called from several threads at
 /// once (the Jacobian's columns): it must be safe to do so.
 using ParametrisedMap = std::function<MapValue(const Eigen::VectorXd& z, double p, int period)>;
+/// P^M(z; p) with its Jacobian ∂P^M/∂z (MapValue::jacobian) from one evaluation (the variational
+/// equations); where it gives none, the columns are central differences of the map.
+using ParametrisedJacobian = std::function<MapValue(const Eigen::VectorXd& z, double p, int period)>;
 
 /// Settings of the continuation; the step lengths are in the scaled unknowns (a step of 0.02 with
 /// the state at rest moves the parameter by 2 % of |to − from|).
@@ -126,6 +133,9 @@ struct ContinuationResult {
   std::vector<BranchSummary> branches;
   int map_evaluations = 0;
   int revolutions = 0;               // applications of the one-revolution map in all
+  int variational_jacobians = 0;     // Jacobians from a ParametrisedJacobian
+  int difference_jacobians = 0;      // Jacobians by central differences of the map
+  std::string jacobian_fallback;     // why the last ParametrisedJacobian gave none ("" when it always did)
   bool stopped = false;              // a stop request ended it
   std::optional<NumericalFailure> failure;  // the first evaluation that failed where no smaller step got round it
 };
@@ -146,6 +156,7 @@ struct ContinuationProgress {
 ContinuationResult continue_fixed_points(const ParametrisedMap& map, const Eigen::VectorXd& z0, double from, double to,
                                          int period, const ContinuationSettings& settings,
                                          const std::function<void(const ContinuationProgress&)>& on_point = {},
-                                         const ReseedFunction& reseed = {});
+                                         const ReseedFunction& reseed = {},
+                                         const ParametrisedJacobian& jacobian = {});
 
 }  // namespace rotbeam

@@ -25,6 +25,9 @@ struct ForeshorteningWorkspace : BeamWorkspace {
   // Contractions shared by the terms (see dynamics.cpp).
   std::vector<double> z;          // Z[i][(j,l)] = Σ_k q_k ∫ISP_ik ISP_jl
   Eigen::VectorXd q_pairs, v_pairs, p_contract, isp_cubic;
+  // Scratch of free_flight_jacobian: ∂Ψ/∂q, ∂Ψ/∂q̇ (n × n), a packed pair vector and an n² vector.
+  Eigen::MatrixXd dpsi_dq, dpsi_dv;
+  Eigen::VectorXd pair_scratch, square_scratch;
 };
 
 /// Fills ws.mass = M(q) and the contraction ws.z (q only; no factorisation). O(n⁴) with packed symmetry.
@@ -34,6 +37,14 @@ void evaluate_mass(const ForeshorteningBeam& beam, const Eigen::Ref<const Eigen:
 /// Fills M(q), every term of Ψ(q, q̇), and the Cholesky factor of M.
 void evaluate_dynamics(const ForeshorteningBeam& beam, const Eigen::Ref<const Eigen::VectorXd>& q,
                        const Eigen::Ref<const Eigen::VectorXd>& qd, ForeshorteningWorkspace& ws);
+
+/// q̈ = −M⁻¹Ψ into qdd, ∂q̈/∂q into jq and ∂q̈/∂q̇ into jqd (n × n) in closed form:
+///   ∂q̈/∂q̇ = −M⁻¹ ∂Ψ/∂q̇,   ∂q̈/∂q = −M⁻¹ (∂Ψ/∂q + (∂M/∂q) q̈),
+/// each term of Ψ differentiated from its contraction with the modal integrals (dynamics.cpp); O(n⁴)
+/// like Ψ itself. Verified against central differences of q̈ (tests/test_tangent.cpp).
+void free_flight_jacobian(const ForeshorteningBeam& beam, const Eigen::Ref<const Eigen::VectorXd>& q,
+                          const Eigen::Ref<const Eigen::VectorXd>& qd, ForeshorteningWorkspace& ws,
+                          Eigen::Ref<Eigen::VectorXd> qdd, Eigen::Ref<Eigen::MatrixXd> jq, Eigen::Ref<Eigen::MatrixXd> jqd);
 
 /// Stiffness of the system linearised about q = 0 (K_ω(0) + K_b(0)) [N/m]; M(0) = m·1, G(0) = D = 0.
 Eigen::MatrixXd linear_stiffness(const ForeshorteningBeam& beam);

@@ -53,6 +53,9 @@ public:
   double dissipation(const Eigen::Ref<const Eigen::VectorXd>& qd) const override;
   /// M0 = m·1, K = K_ω(0) + K_b(0) (linear_stiffness, dynamics.hpp), C = damping.
   Linearization linearization() const override;
+  bool free_flight_jacobian(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& qd,
+                            BeamWorkspace& ws, Eigen::Ref<Eigen::VectorXd> qdd, Eigen::Ref<Eigen::MatrixXd> jq,
+                            Eigen::Ref<Eigen::MatrixXd> jqd) const override;
   /// With V(q) = U − T0 (T2 ≥ 0, so V ≤ h for the rest of the flight) and E = ½qᵀKq:
   /// V(q) − V(0) ≥ E − βE², β = ω²mμ²/(2L²), μ = λ_max(K⁻¹ ISP(1)) (the quartic bending energy is
   /// ≥ 0 and ∫(qᵀISP q)² ≤ (qᵀISP(1)q)² ≤ (2μE)²). While H = h − V(0) < 1/(4β) and E ≤ 1/(2β), E

@@ -30,6 +30,12 @@ public:
       dynamic_.solveInPlace(b);
   }
 
+  /// B ← M⁻¹ B for an n × k matrix B (column by column).
+  void solveColumnsInPlace(Eigen::Ref<Eigen::MatrixXd> b) const {
+    if (n_ > kFixedUpTo) return dynamic_.solveInPlace(b);
+    for (Eigen::Index c = 0; c < b.cols(); ++c) solve_fixed(b.col(c).data());
+  }
+
   int size() const { return n_; }
 
 private:

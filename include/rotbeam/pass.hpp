@@ -106,6 +106,9 @@ struct SteadyState {
   int newton_iterations = 0;           // shooting
   int map_evaluations = 0;             // one-revolution runs of the shooting and the multipliers
   int event_sequence_changes = 0;      // evaluations whose impacts or episodes differed from the orbit's
+  // How the map's Jacobians were computed: "variational", "differences" (simulation.jacobian, or where
+  // the variational equations could not be carried through a run: the note says why), "" when none was.
+  std::string jacobian;
   std::string note;                    // how the search ended, in words
 };
 
@@ -202,6 +205,10 @@ struct PassResult {
   std::vector<std::vector<WearBin>> wear_revolution_profiles;
   Eigen::VectorXd final_q, final_qd;          // the state where the run ended [m], [m/s]
   double final_t = 0;                         // [s]
+  // With PassOptions::tangent: Φ = ∂(q, q̇)/∂(q₀, q̇₀) at the end (2n × 2n, tangent.hpp), empty where it
+  // could not be carried through the run, and then why (tangent_lost).
+  Eigen::MatrixXd final_tangent;
+  std::string tangent_lost;
   std::optional<NumericalFailure> failure;
 };
 

@@ -27,6 +27,13 @@ enum class SteadyMethod {
 };
 const char* steady_method_name(SteadyMethod m);
 
+/// How the section map's Jacobian is computed (Newton's steps, the Floquet multipliers, continuation).
+enum class JacobianMethod {
+  variational,  // the variational equations with a saltation matrix at every event (tangent.hpp): one run
+  differences,  // central differences of the map: 4n runs, accurate to ≈ 1e-4 at rtol 1e-9
+};
+const char* jacobian_method_name(JacobianMethod m);
+
 /// simulation.revolutions when simulation.until_steady is set without it: the cap on the search.
 inline constexpr int kDefaultSteadyRevolutionCap = 1000;
 
@@ -45,7 +52,8 @@ struct PassOptions {
   bool until_steady = false;          // simulation.until_steady: stop once the section state repeats
   double steady_tolerance = 1e-8;     // simulation.steady_tolerance: relative section distance
   SteadyMethod steady_method = SteadyMethod::brute_force;  // simulation.steady_method
-  bool multipliers = true;            // simulation.multipliers: the steady state's Floquet multipliers (4n map runs)
+  bool multipliers = true;            // simulation.multipliers: the steady state's Floquet multipliers
+  JacobianMethod jacobian = JacobianMethod::differences;  // simulation.jacobian
   // Thesis scheme (thesis §4.6–4.7).
   double free_step_s = 1e-6;          // simulation.free_step_s: RK5 step in free flight [s]
   double contact_step_s = 1e-7;       // simulation.contact_step_s: predictor–corrector step [s]
@@ -62,6 +70,10 @@ struct PassOptions {
   // simulation.integrating_factor: propagate the linear modal oscillation about q = 0 exactly and
   // integrate only the remainder (Lawson's method, integrating_factor.hpp); never: plain DP5 on q, q̇.
   FactorUse integrating_factor = FactorUse::automatic;
+  // The adaptive scheme integrates the variational equations beside the motion and applies the
+  // saltation matrix at every event (tangent.hpp), so that the run's end holds ∂x/∂x₀ (PassResult::
+  // final_tangent). Set by the studies (the section map's Jacobian); not a configuration key.
+  bool tangent = false;
   // Both schemes.
   int max_impacts = 10000;                 // simulation.max_impacts
   double deflection_warning_ratio = 0.1;   // simulation.deflection_warning_ratio: warn past max |y_t|/L

@@ -35,12 +35,16 @@ struct System {
   const ContactLaw& law;
 };
 
+/// The number of a contact episode's parameters.
+inline constexpr int kEpisodeParameters = 4;
+
 /// What a contact episode carries besides (q, q̇), set by the contact law at its start and read by it
 /// in its force (contact_law.hpp says what each law keeps in `parameter`).
 struct ContactEpisode {
-  double slip = 0;                    // s_t ∈ [−1, +1]: the friction acts against it
-  std::array<double, 4> parameter{};  // the law's own (the rigid law: λ0, and 1 in [1] while the tip
-                                      // sticks; the compliant law: Hunt–Crossley c)
+  double slip = 0;  // s_t ∈ [−1, +1]: the friction acts against it
+  // The law's own (the rigid law: λ0, and 1 in [1] while the tip sticks; the compliant law:
+  // Hunt–Crossley c).
+  std::array<double, kEpisodeParameters> parameter{};
 };
 
 /// The state of one filament: time, modal coordinates and velocities, phase, and the contact episode
@@ -51,6 +55,12 @@ struct FilamentState {
   Eigen::VectorXd q, qd;   // [m], [m/s]
   Phase phase = Phase::free;
   ContactEpisode episode;
+  // Φ = ∂(q, q̇)/∂(q₀, q̇₀) (2n × 2n) where the pass integrates its variational equations
+  // (PassOptions::tangent, tangent.hpp); empty otherwise.
+  Eigen::MatrixXd tangent;
+  // ∂(episode.parameter)/∂(q₀, q̇₀) (4 × 2n) where a contact episode's parameters were set from the
+  // state at its touch (ContactLaw::episode_at_touch); empty otherwise.
+  Eigen::MatrixXd episode_tangent;
 };
 
 }  // namespace rotbeam

@@ -21,6 +21,10 @@ struct MapEvaluation {
   bool complete = false;     // the m revolutions ran to their end
   std::optional<NumericalFailure> failure;
   PassSummary summary;       // the run's summary (its ledger, peak force and deflection over the m revolutions)
+  // With the variational equations (SectionMap::operator()'s `tangent`): ∂P^m/∂z at z0, empty where
+  // the run could not carry them, and then why (tangent_lost).
+  Eigen::MatrixXd jacobian;
+  std::string tangent_lost;
 };
 
 /// The m-revolution map P^m of the section θ = θ0 (mod 360°): m revolutions run by run_pass from
@@ -31,13 +35,29 @@ class SectionMap {
 public:
   SectionMap(const System& system, const PassOptions& options, const StopToken* stop);
 
-  MapEvaluation operator()(const Eigen::VectorXd& z, int m) const;
+  /// P^m(z); with `tangent`, also its Jacobian from the variational equations with a saltation
+  /// matrix at every event (tangent.hpp): one run instead of the 4n of `jacobian`, and accurate to
+  /// the integration's tolerance rather than to the differences' ≈ 1e-4.
+  MapEvaluation operator()(const Eigen::VectorXd& z, int m, bool tangent = false) const;
 
-  /// The Jacobian ∂P^m/∂z at z by central differences with steps δ_j = kJacobianStep·max(‖z‖, 1e-6)
-  /// (the map's integration noise, ≈ rtol·‖z‖, over δ sets its accuracy: ≈ 1e-4 at rtol 1e-9).
+  /// The Jacobian ∂P^m/∂z at z (`base` = P^m(z)) by options.jacobian:
+  ///  - variational: one run of the variational equations with saltation matrices (tangent.hpp),
+  ///    accurate to the integration's tolerance; where they cannot be carried through the run (a
+  ///    grazing event, a tangential impact, the thesis scheme) it falls back to differences and
+  ///    fallback() says why;
+  ///  - differences: central differences with steps δ_j = kJacobianStep·max(‖z‖, 1e-6) (the map's
+  ///    integration noise, ≈ rtol·‖z‖, over δ sets its accuracy: ≈ 1e-4 at rtol 1e-9).
   /// Evaluations whose impacts or episodes differ from `base` (the event sequence changed inside the
   /// stencil, so the map is not smooth there) are counted in *sequence_changes. Empty on a failure.
   Eigen::MatrixXd jacobian(const Eigen::VectorXd& z, int m, const MapEvaluation& base, int* sequence_changes) const;
+  /// The Jacobian by central differences (whatever options.jacobian says).
+  Eigen::MatrixXd jacobian_by_differences(const Eigen::VectorXd& z, int m, const MapEvaluation& base,
+                                          int* sequence_changes) const;
+
+  /// How the last Jacobian was computed ("variational" or "differences"; "" before the first).
+  const std::string& last_method() const { return last_method_; }
+  /// Why the last variational Jacobian fell back to differences ("" when it did not).
+  const std::string& fallback() const { return fallback_; }
 
   int evaluations() const { return evaluations_; }
   int revolutions_run() const { return revolutions_run_; }
@@ -48,6 +68,7 @@ private:
   PassOptions options_;
   const StopToken* stop_;
   mutable int evaluations_ = 0, revolutions_run_ = 0;
+  mutable std::string last_method_, fallback_;
 };
 
 /// `base` with the flexible start of section state z = (q/L, q̇/(ωL)) (section_state's inverse).

@@ -65,6 +65,7 @@ struct StepOutcome {
 struct StepperStatistics {
   long steps = 0;
   long rhs_evaluations = 0;
+  long tangent_evaluations = 0;  // evaluations of q̈ for the variational equations (PassOptions::tangent)
   long corrector_iterations = 0;
   int corrector_iterations_max = 0;
 };

@@ -117,6 +117,11 @@ ContactSample ContactLaw::sample_at_start(const System& system, const ContactEpi
   return sample(system, episode, t, q, qd, ws, tip);
 }
 
+ImpactResult ContactLaw::momentum_jump(const System&, double, const Eigen::Ref<const Eigen::VectorXd>&,
+                                       Eigen::Ref<Eigen::VectorXd>, BeamWorkspace&, TipKinematics&) const {
+  throw std::logic_error(std::string("the ") + name() + " contact law has no impacts");
+}
+
 double ContactLaw::stored_energy(const System&, double, const Eigen::Ref<const Eigen::VectorXd>&) const { return 0.0; }
 
 FailureKind ContactLaw::failure_kind(const ContactEvaluation&) const { return FailureKind::painleve; }

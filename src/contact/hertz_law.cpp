@@ -74,16 +74,23 @@ public:
   }
 
   // A compliant contact begins at C = 0: its damping from the approach speed, then the force phase.
+  bool episode_at_touch(const System& system, double t, const Eigen::Ref<const Eigen::VectorXd>& q,
+                        const Eigen::Ref<const Eigen::VectorXd>& qd, ContactEpisode& episode,
+                        TipKinematics& tip) const override {
+    tip_kinematics(system.beam, system.surface, t, q, qd, tip);
+    const double full = std::hypot(tip.VX - tip.surface_vx, tip.VY - tip.surface_vy);
+    episode.slip = regularized_slip(tip.slip_speed, settings().hertz.friction_regularization_m_s);
+    episode.parameter[0] = hertz_damping(settings(), tip.gap_rate, full);
+    return true;
+  }
+
   void touch(PhaseControl& control) const override {
     const System& sys = control.system();
     FilamentState& s = control.state();
     TipKinematics& tip = control.tip();
-    tip_kinematics(sys.beam, sys.surface, s.t, s.q, s.qd, tip);
+    episode_at_touch(sys, s.t, s.q, s.qd, s.episode, tip);
     const double v0 = tip.gap_rate;
-    const double full = std::hypot(tip.VX - tip.surface_vx, tip.VY - tip.surface_vy);
-    const double damping = hertz_damping(settings(), v0, full);
-    s.episode.slip = regularized_slip(tip.slip_speed, settings().hertz.friction_regularization_m_s);
-    s.episode.parameter[0] = damping;
+    const double damping = s.episode.parameter[0];
     ContactLoad zero;
     zero.slip = s.episode.slip;
     s.phase = Phase::contact;

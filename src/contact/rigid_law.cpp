@@ -118,6 +118,11 @@ public:
         e.a, e.b, e.c, "a − b turned negative while the tip slid (the contact force grows without bound toward it)");
   }
 
+  ImpactResult momentum_jump(const System& system, double t, const Eigen::Ref<const Eigen::VectorXd>& q,
+                             Eigen::Ref<Eigen::VectorXd> qd, BeamWorkspace& ws, TipKinematics& tip) const override {
+    return apply_impact(system.beam, system.surface, impact_law(), t, q, qd, ws, tip, friction().mu);
+  }
+
   void touch(PhaseControl& control) const override {
     const System& sys = control.system();
     FilamentState& s = control.state();
@@ -267,8 +272,7 @@ private:
     FilamentState& s = control.state();
     Eigen::VectorXd& before = control.scratch();
     before = s.qd;
-    const ImpactResult r = apply_impact(sys.beam, sys.surface, impact_law(), s.t, s.q, s.qd, control.workspace(),
-                                        control.tip(), friction().mu);
+    const ImpactResult r = momentum_jump(sys, s.t, s.q, s.qd, control.workspace(), control.tip());
     if (r.jammed)
       return control.fail(FailureKind::painleve,
                           "the frictional impact jams: sliding drives the tip into the surface and the normal "

@@ -22,6 +22,7 @@
 // arms the impact detector).
 #include "rotbeam/integrating_factor.hpp"
 #include "rotbeam/stepper.hpp"
+#include "rotbeam/tangent.hpp"
 #include "rotbeam/detail/diagnostics.hpp"
 
 #include <boost/math/tools/minima.hpp>
@@ -80,9 +81,11 @@ using Controlled = odeint::controlled_runge_kutta<odeint::runge_kutta_dopri5<Sta
                                                   odeint::explicit_error_stepper_fsal_tag>;
 using DenseStepper = odeint::dense_output_runge_kutta<Controlled, odeint::explicit_controlled_stepper_fsal_tag>;
 
-// The state's components that steer the steps: all but the ledger's terms reported beside the balance.
-std::vector<char> steering_components(int n) {
-  std::vector<char> steers(2 * n + kIntegratedTermCount, 1);
+// The state's components that steer the steps: all but the ledger's terms reported beside the balance
+// and the variational equations' Φ (`tangent` components after them), which ride on the motion's steps.
+std::vector<char> steering_components(int n, int tangent) {
+  std::vector<char> steers(2 * n + kIntegratedTermCount + tangent, 1);
+  for (int k = 0; k < tangent; ++k) steers[2 * n + kIntegratedTermCount + k] = 0;
   for (std::size_t k = 0; k < kIntegratedTermCount; ++k)
     if (ledger_term_info(kIntegratedTerms[k]).report == LedgerReport::beside) steers[2 * n + k] = 0;
   return steers;
@@ -120,8 +123,9 @@ public:
         ews_(system.beam.make_workspace()),
         tip_(n_),
         etip_(n_),
-        x_(2 * n_ + kLedger, 0.0),
-        xs_(2 * n_ + kLedger, 0.0),
+        tangent_(options.tangent ? 4 * n_ * n_ : 0),
+        x_(2 * n_ + kLedger + tangent_, 0.0),
+        xs_(2 * n_ + kLedger + tangent_, 0.0),
         q_(n_),
         qd_(n_),
         force_(n_),
@@ -130,7 +134,7 @@ public:
         pq_(n_),
         pqd_(n_),
         pa_(n_),
-        stepper_(Controlled(SteeringErrorChecker(options.atol, options.rtol, steering_components(n_)),
+        stepper_(Controlled(SteeringErrorChecker(options.atol, options.rtol, steering_components(n_, tangent_)),
                             odeint::default_step_adjuster<double, double>(options.max_step_s),
                             odeint::runge_kutta_dopri5<State>())) {
     if (opt_.integrating_factor == FactorUse::always ||
@@ -139,6 +143,15 @@ public:
       highest_hz_ = factor_->highest_frequency() / (2.0 * M_PI);
       // Rebase once στ reaches 1, or after 10⁶ radians of the highest mode (the phase Ωτ keeps its digits).
       factor_rebase_rate_ = factor_->largest_decay_rate() + 1e-6 * factor_->highest_frequency();
+    }
+    if (tangent_) {
+      tws_.emplace(sys_.beam);
+      phi_ = Eigen::MatrixXd::Identity(2 * n_, 2 * n_);
+      jq_.resize(n_, n_);
+      jqd_.resize(n_, n_);
+      dq_.resize(n_);
+      dqd_.resize(n_);
+      dqdd_.resize(n_);
     }
   }
 
@@ -154,6 +167,7 @@ public:
     t_ = s.t;
     q_ = s.q;
     qd_ = s.qd;
+    take_tangent(s);
     reinitialize();
     free_damping_ = 0.0;
     // Just after a bounce or a separation the tip sits on the surface (C ≈ 0) and recedes, after a
@@ -181,6 +195,7 @@ public:
     t_ = s.t;
     q_ = s.q;
     qd_ = s.qd;
+    take_tangent(s);
     reinitialize();
     marks_ = {};
   }
@@ -214,6 +229,23 @@ private:
       }
     }
     for (int k = 0; k < kLedger; ++k) x_[2 * n_ + k] = 0.0;
+    for (int c = 0; c < 2 * n_ && tangent_; ++c) {
+      double* v = x_.data() + 2 * n_ + kLedger + 2 * n_ * c;
+      if (factor_) {
+        factor_->to_integration(phi_.col(c).data(), phi_.col(c).data() + n_, v);
+      } else {
+        for (int i = 0; i < 2 * n_; ++i) v[i] = phi_(i, c);
+      }
+    }
+  }
+  // Φ from the state passed to begin_free, begin_contact or a constraint's step.
+  void take_tangent(const FilamentState& s) {
+    if (!tangent_) return;
+    phi_ = s.tangent;
+    ptan_ = s.episode_tangent;
+    ptan_rows_ = 0;
+    for (int k = 0; k < ptan_.rows(); ++k)
+      if (ptan_.row(k).cwiseAbs().maxCoeff() > 0.0) ptan_rows_ |= 1u << k;
   }
   // q, q̇ of the integrated state x at time t.
   template <class Q, class Qd>
@@ -228,7 +260,17 @@ private:
       qd[i] = x[n_ + i];
     }
   }
-  void unpack(double t, const State& x) { physical(t, x, q_, qd_); }
+  void unpack(double t, const State& x) {
+    physical(t, x, q_, qd_);
+    for (int c = 0; c < 2 * n_ && tangent_; ++c) {
+      const double* v = x.data() + 2 * n_ + kLedger + 2 * n_ * c;
+      if (factor_) {
+        factor_->to_physical(v, phi_.col(c).data(), phi_.col(c).data() + n_);
+      } else {
+        for (int i = 0; i < 2 * n_; ++i) phi_(i, c) = v[i];
+      }
+    }
+  }
   // Interior samples of a free-flight step of length h.
   int free_samples(double h) const {
     return std::max(kSamplesPerStep, static_cast<int>(std::ceil(kSamplesPerPeriod * h * highest_hz_)));
@@ -243,6 +285,10 @@ private:
     s.t = t_;
     s.q = q_;
     s.qd = qd_;
+    if (tangent_) {
+      s.tangent = phi_;
+      s.episode_tangent = ptan_;
+    }
   }
 
   // ---- right-hand side ----------------------------------------------------------------------
@@ -257,6 +303,7 @@ private:
       motion_derivative(dxdt);
       for (int k = 0; k < kLedger; ++k) dxdt[2 * n_ + k] = 0.0;
       if (damped_) dxdt[2 * n_ + kDampingWork] = -sys_.beam.dissipation(qd);
+      if (tangent_) tangent_derivative(t, x, dxdt);
       return;
     }
     const ContactEvaluation e = law_.evaluate(sys_, episode_, t, q, qd, *ws_, tip_, force_);
@@ -270,6 +317,33 @@ private:
     motion_derivative(dxdt);
     for (int k = 0; k < kLedger; ++k) dxdt[2 * n_ + k] = e.load.rate[kIntegratedTerms[k]];
     dxdt[2 * n_ + kDampingWork] = damped_ ? -sys_.beam.dissipation(qd) : 0.0;
+    if (tangent_) tangent_derivative(t, x, dxdt);
+  }
+
+  // Φ̇ = A Φ (tangent.hpp) into dxdt's tangent part, at the state of the last physical() call (pq_, pqd_);
+  // with the integrating factor each column of Φ is carried in the factor's variables like the state.
+  void tangent_derivative(double t, const State& x, State& dxdt) {
+    phase_jacobian(sys_, phase_, episode_, t, pq_, pqd_, *tws_, jq_, jqd_);
+    // An episode whose parameters the touch set from the state: Φ̇ = AΦ + (0, ∂q̈/∂p) ∂p/∂x₀.
+    const bool forced = phase_ != Phase::free && ptan_rows_ != 0;
+    if (forced) parameter_field(sys_, phase_, episode_, t, pq_, pqd_, ptan_rows_, *tws_);
+    for (int c = 0; c < 2 * n_; ++c) {
+      const double* v = x.data() + 2 * n_ + kLedger + 2 * n_ * c;
+      double* dv = dxdt.data() + 2 * n_ + kLedger + 2 * n_ * c;
+      if (factor_) {
+        factor_->to_physical(v, dq_.data(), dqd_.data());
+      } else {
+        for (int i = 0; i < n_; ++i) dq_[i] = v[i], dqd_[i] = v[n_ + i];
+      }
+      dqdd_.noalias() = jq_ * dq_;
+      dqdd_.noalias() += jqd_ * dqd_;
+      if (forced) dqdd_.noalias() += tws_->parameter_field * ptan_.col(c);
+      if (factor_) {
+        factor_->derivative(dqdd_.data(), dv);
+      } else {
+        for (int i = 0; i < n_; ++i) dv[i] = dqd_[i], dv[n_ + i] = dqdd_[i];
+      }
+    }
   }
 
   // The derivative of the motion's part of x from q̇ (pqd_) and q̈ (pa_) at the state of the last
@@ -381,6 +455,7 @@ private:
     }
     dt_ = stepper_.current_time_step();
     ++stats_.steps;
+    if (tangent_) stats_.tangent_evaluations = tws_->field_evaluations;
     const double min_step = kMinStepFraction * t_stop;
     if (!(tb > ta) || tb - ta < min_step)
       return underflow("the accepted step " + short_number(tb - ta) + " s is below " + short_number(min_step) + " s", out);
@@ -496,6 +571,7 @@ private:
       t_ = s.t;
       q_ = s.q;
       qd_ = s.qd;
+      take_tangent(s);
       project(t_, locked);
       store(s);  // the projected state is the start of the step (and the last good one)
       reinitialize();
@@ -506,6 +582,7 @@ private:
         t_ = s.t;
         q_ = s.q;
         qd_ = s.qd;
+        take_tangent(s);
         reinitialize();
         marks_ = {};
       }
@@ -632,6 +709,14 @@ private:
   int n_;
   std::unique_ptr<BeamWorkspace> ws_, ews_;
   TipKinematics tip_, etip_;
+  // The variational equations (PassOptions::tangent): 4n² components of x after the ledger's, Φ at
+  // t_ in physical coordinates, and the scratch of A Φ.
+  int tangent_;
+  std::optional<TangentWorkspace> tws_;
+  Eigen::MatrixXd phi_, jq_, jqd_;
+  Eigen::MatrixXd ptan_;     // ∂(episode.parameter)/∂x₀ of the episode under way (empty: none)
+  unsigned ptan_rows_ = 0;   // its nonzero rows (bit k: parameter k)
+  Eigen::VectorXd dq_, dqd_, dqdd_;
   State x_, xs_;
   Eigen::VectorXd q_, qd_, force_, w_, w2_;
   Eigen::VectorXd pq_, pqd_, pa_;  // q, q̇, q̈ of a state being evaluated (rhs, root functions)

@@ -21,4 +21,8 @@ const char* factor_use_name(FactorUse u) {
 
 const char* steady_method_name(SteadyMethod m) { return m == SteadyMethod::shooting ? "shooting" : "brute_force"; }
 
+const char* jacobian_method_name(JacobianMethod m) {
+  return m == JacobianMethod::differences ? "differences" : "variational";
+}
+
 }  // namespace rotbeam

@@ -243,6 +243,9 @@ std::vector<Key> make_table() {
   t.push_back(named<SteadyMethod>("simulation.steady_method", {{"brute_force", SteadyMethod::brute_force}, {"shooting", SteadyMethod::shooting}},
                     "how until_steady searches: revolution after revolution, or Newton on the revolution map",
                     [](auto& c) -> auto& { return c.simulation.steady_method; }));
+  t.push_back(named<JacobianMethod>("simulation.jacobian", {{"variational", JacobianMethod::variational}, {"differences", JacobianMethod::differences}},
+                    "the revolution map's Jacobian (Newton, multipliers, continuation): the variational equations with saltation matrices, or central differences of the map",
+                    [](auto& c) -> auto& { return c.simulation.jacobian; }));
   t.push_back(plain("simulation.rtol", "", one(inside(0, 1)), "the adaptive scheme's relative tolerance",
                     [](auto& c) -> auto& { return c.simulation.rtol; }));
   // atol bounds the error of q [m], q̇ [m/s] and the contact integrals: above 1e-3 it bounds nothing.

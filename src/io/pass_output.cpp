@@ -250,6 +250,7 @@ nlohmann::json summary_json(const PassResult& result, const Config& config, cons
                          {"newton_iterations", st.newton_iterations},
                          {"map_evaluations", st.map_evaluations},
                          {"event_sequence_changes", st.event_sequence_changes},
+                         {"jacobian", st.jacobian},
                          {"note", st.note}};
   } else {
     j["steady_state"] = nullptr;

@@ -16,7 +16,11 @@ ForeshorteningWorkspace::ForeshorteningWorkspace(int size)
       q_pairs(size * (size + 1) / 2),
       v_pairs(size * (size + 1) / 2),
       p_contract(size * (size + 1) / 2),
-      isp_cubic(size) {}
+      isp_cubic(size),
+      dpsi_dq(size, size),
+      dpsi_dv(size, size),
+      pair_scratch(size * (size + 1) / 2),
+      square_scratch(size * size) {}
 
 namespace {
 
@@ -187,6 +191,99 @@ void evaluate_dynamics(const ForeshorteningBeam& model, const Eigen::Ref<const E
     ws.damping.noalias() = model.damping * qd;
     ws.psi += ws.damping;
   }
+}
+
+void free_flight_jacobian(const ForeshorteningBeam& model, const Eigen::Ref<const Eigen::VectorXd>& q,
+                          const Eigen::Ref<const Eigen::VectorXd>& qd, ForeshorteningWorkspace& ws,
+                          Eigen::Ref<Eigen::VectorXd> qdd, Eigen::Ref<Eigen::MatrixXd> jq, Eigen::Ref<Eigen::MatrixXd> jqd) {
+  evaluate_dynamics(model, q, qd, ws);  // M, Ψ, the factor, Z and the packed q q, q̇ q̇
+  qdd = -ws.psi;
+  ws.mass_llt.solveInPlace(qdd);
+  const ModalIntegrals& mi = *model.integrals;
+  const int n = mi.n, np = mi.pairs;
+  const double L = model.length;
+  const double c1 = model.mass_per_length / L;
+  const Eigen::Map<const RowMatrix> t(mi.isp_isp.data(), n * n, np);  // T[(i,k)][(j,l)] = ∫ISP_ik ISP_jl
+  const Eigen::Map<const RowMatrix> z(ws.z.data(), n, np);           // Z[i][(j,l)] = Σ_k q_k T[(i,k)][(j,l)]
+  const auto zz = [&](int i, int j, int l) { return z(i, mi.pair(j, l)); };
+  Eigen::MatrixXd& dq = ws.dpsi_dq;
+  Eigen::MatrixXd& dv = ws.dpsi_dv;
+
+  // D(q, q̇) q̇ = c1 Σ_k q_k Σ_p T[(i,k)][p] (q̇q̇)_p:  ∂/∂q_k = c1 (T q̇q̇)_(i,k),  ∂/∂q̇_j = 2 c1 Σ_l Z[i][(j,l)] q̇_l.
+  ws.square_scratch.noalias() = t * ws.v_pairs;
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < n; ++k) dq(i, k) = c1 * ws.square_scratch[i * n + k];
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      double s = 0.0;
+      for (int l = 0; l < n; ++l) s += zz(i, j, l) * qd[l];
+      dv(i, j) = 2.0 * c1 * s;
+    }
+
+  // 2ω G(q) q̇ = g2 [Σ_kj B[i,k,j] q_k q̇_j − Σ_i'k B[i',k,i] q̇_i' q_k], B = ∫ISP S.
+  const double g2 = model.coriolis ? 2.0 * model.omega * model.mass_per_length : 0.0;
+  const auto b = [&](int i, int k, int j) { return mi.isp_s[static_cast<std::size_t>(i * n + k) * n + j]; };
+  if (g2 != 0.0)
+    for (int i = 0; i < n; ++i)
+      for (int k = 0; k < n; ++k) {
+        double by_q = 0.0, by_v = 0.0;
+        for (int j = 0; j < n; ++j) {
+          by_q += (b(i, k, j) - b(j, k, i)) * qd[j];  // ∂/∂q_k
+          by_v += (b(i, j, k) - b(k, j, i)) * q[j];   // ∂/∂q̇_k
+        }
+        dq(i, k) += g2 * by_q;
+        dv(i, k) += g2 * by_v;
+      }
+
+  // K_ω(q) q = cw [(r_h/L) ∫ISP q + ∫ξ ISP q − c(q)/(2L²) − q], c_i = Σ_p Z[i][p] (qq)_p:
+  // ∂c_i/∂q_m = (T qq)_(i,m) + 2 Σ_l Z[i][(m,l)] q_l.
+  const double cw = model.centrifugal ? model.mass * model.omega * model.omega : 0.0;
+  ws.square_scratch.noalias() = t * ws.q_pairs;
+  const double rh_l = model.hub_radius / L;
+  if (cw != 0.0)
+    for (int i = 0; i < n; ++i)
+      for (int m = 0; m < n; ++m) {
+        double s = 0.0;
+        for (int l = 0; l < n; ++l) s += zz(i, m, l) * q[l];
+        const double dcubic = ws.square_scratch[i * n + m] + 2.0 * s;
+        dq(i, m) += cw * (rh_l * mi.isp_mean(i, m) + mi.isp_xi(i, m) - dcubic / (2.0 * L * L) - (i == m ? 1.0 : 0.0));
+      }
+
+  // K_b(q) q = cb [r⁴ ⊙ q + Σ_j Pc_(i,j) q_j/(2L²)], Pc = PP qq:
+  // ∂/∂q_m = cb [r⁴_i δ_im + (Pc_(i,m) + 2 Σ_jb PP[(i,j)][(m,b)] q_j q_b)/(2L²)].
+  const double cb = model.bending_stiffness / (L * L * L);
+  const Eigen::Map<const RowMatrix> pp(mi.p_p.data(), np, np);
+  for (int i = 0; i < n; ++i)
+    for (int m = 0; m < n; ++m) {
+      double r = 0.0;
+      for (int j = 0; j < n; ++j) {
+        double s = 0.0;
+        for (int bb = 0; bb < n; ++bb) s += pp(mi.pair(i, j), mi.pair(m, bb)) * q[bb];
+        r += s * q[j];
+      }
+      dq(i, m) += cb * ((i == m ? mi.r4[i] : 0.0) + (ws.p_contract[mi.pair(i, m)] + 2.0 * r) / (2.0 * L * L));
+    }
+
+  if (model.damped()) dv += model.damping;
+
+  // (∂M/∂q_k a)_i = c1 [Σ_p T[(i,k)][p] u_p + Σ_j a_j Z[i][(j,k)]], u = the packed symmetric a ⊗ q, a = q̈.
+  Eigen::VectorXd& u = ws.pair_scratch;
+  for (int j = 0; j < n; ++j) {
+    u[mi.pair(j, j)] = qdd[j] * q[j];
+    for (int l = j + 1; l < n; ++l) u[mi.pair(j, l)] = qdd[j] * q[l] + qdd[l] * q[j];
+  }
+  ws.square_scratch.noalias() = t * u;
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < n; ++k) {
+      double s = 0.0;
+      for (int j = 0; j < n; ++j) s += qdd[j] * zz(i, j, k);
+      dq(i, k) += c1 * (ws.square_scratch[i * n + k] + s);
+    }
+
+  jq = -dq;
+  ws.mass_llt.solveColumnsInPlace(jq);
+  jqd = -dv;
+  ws.mass_llt.solveColumnsInPlace(jqd);
 }
 
 Eigen::MatrixXd linear_stiffness(const ForeshorteningBeam& model) {

@@ -113,6 +113,14 @@ double ForeshorteningBeam::dissipation(const Eigen::Ref<const Eigen::VectorXd>& 
   return damped() ? detail::quadratic_form(damping, qd) : 0.0;
 }
 
+bool ForeshorteningBeam::free_flight_jacobian(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                              const Eigen::Ref<const Eigen::VectorXd>& qd, BeamWorkspace& ws,
+                                              Eigen::Ref<Eigen::VectorXd> qdd, Eigen::Ref<Eigen::MatrixXd> jq,
+                                              Eigen::Ref<Eigen::MatrixXd> jqd) const {
+  rotbeam::free_flight_jacobian(*this, q, qd, own(ws), qdd, jq, jqd);
+  return true;
+}
+
 Linearization ForeshorteningBeam::linearization() const {
   Linearization lin;
   lin.mass = mass * Eigen::MatrixXd::Identity(n, n);

@@ -52,6 +52,12 @@ void PassDriver::report_progress() {
 
 void PassDriver::run(const InitialConditions& ic) {
   const int n = system_.beam.modes();
+  if (options_.tangent) {
+    state_.tangent = Eigen::MatrixXd::Identity(2 * n, 2 * n);
+    tangent_ws_.emplace(system_.beam);
+    if (options_.scheme != Scheme::adaptive) lose_tangent("the thesis scheme does not integrate the variational equations");
+    if (ic.rigid_start) lose_tangent("a rigid start is not a function of the state");
+  }
   state_.t = 0.0;
   state_.phase = Phase::free;
   state_.episode = {};
@@ -119,7 +125,9 @@ void PassDriver::free_flight() {
     if (o.status == StepStatus::root) {  // the gap closed: a touch, which the contact law resolves
       instant_transitions_ = (state_.t - t_enter < kInstant) ? instant_transitions_ + 1 : 0;
       rec_.accept(state_.t, state_.q, state_.qd, Phase::free, {}, o.integrals, true);
+      open_event(EventSurface{});
       system_.law.touch(*this);
+      close_event();
       return;
     }
     const bool section = state_.t >= next_section_;
@@ -163,16 +171,59 @@ bool PassDriver::impacts_exhausted() {
 
 void PassDriver::impact(const Eigen::VectorXd& qd_before, const ImpactResult& r) {
   rec_.impact(state_.t, state_.q, qd_before, state_.qd, r);
+  if (!tracking()) return;
+  if (!pending_) return lose_tangent("an impact away from an event of the pass");
+  if (r.tangential) return lose_tangent("a tangential impact (Painlevé's paradox) is not differentiated");
+  if (++pending_->impacts > 1) return lose_tangent("two impacts at one instant");
 }
 
 void PassDriver::rebound() {
   state_.phase = Phase::free;
+  state_.episode_tangent.resize(0, 0);
+  close_event();
   stepper_.begin_free(state_, FreeStart::rebound);
 }
 
 void PassDriver::enter_contact(const ContactLoad& load, const std::string& why, bool first_touch) {
   rec_.contact_start(state_.t, state_.q, state_.qd, load, why, first_touch);
+  close_event();
   stepper_.begin_contact(state_);
+}
+
+void PassDriver::open_event(const EventSurface& surface) {
+  if (!tracking()) return;
+  if (pending_) close_event();
+  pending_.emplace();
+  pending_->surface = surface;
+  pending_->before = EventSide{state_.t, state_.q, state_.qd, state_.phase, state_.episode};
+}
+
+void PassDriver::close_event() {
+  if (!pending_) return;
+  const PendingEvent e = std::move(*pending_);
+  pending_.reset();
+  if (!tracking()) return;
+  const EventSide after{state_.t, state_.q, state_.qd, state_.phase, state_.episode};
+  // A compliant contact's regularised friction is stiff across V_t = 0 (slope μF_n/v_ε): the
+  // variational equations riding on the motion's steps lose accuracy there (measured: 3e-3 of Φ after
+  // 14 episodes against 1e-6 without friction; docs/model.md), so the map's Jacobian is differenced.
+  if (after.phase != Phase::free && system_.law.kind(after.phase) == PhaseKind::force && system_.law.friction().mu > 0.0)
+    return lose_tangent("the compliant law's regularised friction is stiff in the variational equations");
+  const bool same_field = e.impacts == 0 && after.phase == e.before.phase &&
+                          (after.phase == Phase::free || (after.episode.slip == e.before.episode.slip &&
+                                                          after.episode.parameter == e.before.episode.parameter));
+  if (same_field) return;  // S = 1
+  if (!saltation_matrix(system_, e.surface, e.before, after, e.impacts > 0, *tangent_ws_))
+    return lose_tangent("a grazing event (the root function's rate is zero) at t = " + short_number(e.before.t) + " s");
+  // A touch that sets the episode's parameters from the state: their sensitivity rides with Φ.
+  if (e.surface.gap && after.phase != Phase::free && episode_sensitivity(system_, e.before, *tangent_ws_))
+    state_.episode_tangent = tangent_ws_->episode_jacobian * state_.tangent;
+  state_.tangent = tangent_ws_->saltation * state_.tangent;
+}
+
+void PassDriver::lose_tangent(const std::string& why) {
+  if (tangent_lost_.empty()) tangent_lost_ = why;
+  pending_.reset();
 }
 
 void PassDriver::lift_off(const std::string& why) {
@@ -194,6 +245,8 @@ void PassDriver::fail(FailureKind kind, const std::string& message, Phase phase)
 
 void PassDriver::separate() {
   state_.phase = Phase::free;
+  state_.episode_tangent.resize(0, 0);
+  close_event();
   stepper_.begin_free(state_, FreeStart::separation);
 }
 
@@ -211,12 +264,15 @@ void PassDriver::contact() {
       rec_.accept(state_.t, state_.q, state_.qd, state_.phase, zero, o.integrals, true);
       rec_.contact_end(state_.t, state_.q, state_.qd, root->end_detail);
       instant_transitions_ = (state_.t - t_enter < kInstant) ? instant_transitions_ + 1 : 0;
+      open_event(EventSurface{false, state_.phase, o.contact_root, state_.episode});
       return separate();
     }
     const bool section = state_.t >= next_section_;
     rec_.accept(state_.t, state_.q, state_.qd, state_.phase, o.load, o.integrals, root || section);
     if (root) {
+      open_event(EventSurface{false, state_.phase, o.contact_root, state_.episode});
       law.root(*this, o.contact_root);
+      close_event();
       if (done_ || state_.phase == Phase::free) return;
     }
     instant_transitions_ = 0;
@@ -247,6 +303,10 @@ PassResult run_pass_with(const System& system, const InitialConditions& initial,
     PassRecorder recorder(system, options, control, result);
     PassDriver driver(system, options, stepper, recorder, control);
     driver.run(initial);
+    if (options.tangent) {
+      result.final_tangent = driver.final_tangent();
+      result.tangent_lost = driver.tangent_lost();
+    }
   }
   result.summary.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return result;

@@ -13,8 +13,11 @@
 #include "rotbeam/contact_law.hpp"
 #include "rotbeam/pass.hpp"
 #include "rotbeam/stepper.hpp"
+#include "rotbeam/tangent.hpp"
 
 #include <cmath>
+#include <optional>
+#include <string>
 
 namespace rotbeam {
 
@@ -24,6 +27,9 @@ public:
              const PassControl& control);
   /// Runs the pass from `initial` to the end angle or a diagnosed failure.
   void run(const InitialConditions& initial);
+  /// With PassOptions::tangent: Φ at the end of the run (empty where it was lost), and why it was lost.
+  Eigen::MatrixXd final_tangent() const { return tangent_lost_.empty() ? state_.tangent : Eigen::MatrixXd(); }
+  const std::string& tangent_lost() const { return tangent_lost_; }
 
   // PhaseControl: what the contact law's transitions do (contact_law.hpp).
   const System& system() const override { return system_; }
@@ -79,6 +85,22 @@ private:
   detail::ProgressClock progress_clock_;
   double flexible_from_t_ = 0.0;  // where the integration of the flexible motion began [s]
   double next_clear_check_t_ = 0.0;  // simulation.end_when_clear: the next check [s]
+
+  // The variational equations (PassOptions::tangent, tangent.hpp): an event opens where a root
+  // function reached zero (a touch, a root of a contact phase) with the state before it; the new
+  // phase's start applies its saltation matrix to state_.tangent.
+  struct PendingEvent {
+    EventSurface surface;
+    EventSide before;
+    int impacts = 0;  // impacts the law applied at the event
+  };
+  void open_event(const EventSurface& surface);
+  void close_event();
+  void lose_tangent(const std::string& why);
+  bool tracking() const { return options_.tangent && tangent_lost_.empty(); }
+  std::optional<TangentWorkspace> tangent_ws_;
+  std::optional<PendingEvent> pending_;
+  std::string tangent_lost_;
 };
 
 }  // namespace rotbeam

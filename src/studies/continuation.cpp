@@ -73,9 +73,10 @@ std::optional<Multiplier> pair_nearest_circle(const std::vector<Multiplier>& mu)
 
 class Engine {
 public:
-  Engine(const ParametrisedMap& map, double from, double to, const ContinuationSettings& s,
-         const std::function<void(const ContinuationProgress&)>& on_point, ContinuationResult& out)
-      : map_(map), from_(from), span_(to - from), s_(s), on_point_(on_point), out_(out) {}
+  Engine(const ParametrisedMap& map, const ParametrisedJacobian& with_jacobian, double from, double to,
+         const ContinuationSettings& s, const std::function<void(const ContinuationProgress&)>& on_point,
+         ContinuationResult& out)
+      : map_(map), with_jacobian_(with_jacobian), from_(from), span_(to - from), s_(s), on_point_(on_point), out_(out) {}
 
   double parameter(double u) const { return from_ + u * span_; }
   double scaled(double p) const { return (p - from_) / span_; }
@@ -94,9 +95,65 @@ public:
     return (pz - z).norm() / std::max({pz.norm(), z.norm(), 1e-6 * zs_});
   }
 
-  // ∂P/∂z and ∂P/∂p at (z, p) by central differences, the 2d + 2 evaluations in parallel. False when
-  // one did not complete (its failure kept in *failure).
+  // ∂P/∂z and ∂P/∂p at (z, p): ∂P/∂z from the map's own Jacobian where it gives one (with_jacobian_),
+  // else by central differences; ∂P/∂p by central differences. The evaluations run in parallel. False
+  // when one did not complete (its failure kept in *failure).
   bool jacobian(BranchPoint& pt, std::optional<NumericalFailure>* failure) {
+    if (with_jacobian_) {
+      if (!jacobian_variational(pt, failure)) return false;
+      if (pt.jacobian.size() > 0) return true;
+    }
+    return jacobian_by_differences(pt, failure);
+  }
+
+  // ∂P/∂z from one evaluation of with_jacobian_ (left empty where it gives none) beside the
+  // parameter's stencil (∂P/∂p).
+  bool jacobian_variational(BranchPoint& pt, std::optional<NumericalFailure>* failure) {
+    const Eigen::Index d = pt.z.size();
+    const double dp = s_.jacobian_step * std::abs(span_);
+    const double u = scaled(pt.parameter), du = s_.jacobian_step;
+    const bool one_sided = pt.image.size() == pt.z.size() && (u + du > 1.0 || u - du < 0.0);
+    const double toward = span_ > 0 ? (u + du > 1.0 ? -1.0 : 1.0) : (u + du > 1.0 ? 1.0 : -1.0);
+    std::vector<MapValue> v(one_sided ? 2 : 3);
+    JobRunnerOptions jo;
+    jo.threads = std::max(1, s_.threads);
+    jo.stop = s_.stop;
+    const std::vector<std::size_t> ran = run_jobs(v.size(), [&](std::size_t j) {
+      if (j == 0) {
+        v[0] = with_jacobian_(pt.z, pt.parameter, pt.period);
+        return;
+      }
+      const double p = pt.parameter + (one_sided ? toward * dp : (j == 1 ? dp : -dp));
+      v[j] = map_(pt.z, p, pt.period);
+    }, jo);
+    out_.map_evaluations += static_cast<int>(ran.size());
+    out_.revolutions += static_cast<int>(ran.size()) * pt.period;
+    if (ran.size() != v.size()) return false;
+    for (const MapValue& e : v)
+      if (!e.complete()) {
+        if (failure && !*failure) *failure = e.failure;
+        return false;
+      }
+    pt.jacobian_event_changes = 0;
+    for (std::size_t j = 0; j < v.size(); ++j)
+      if (v[j].metrics.impacts != pt.metrics.impacts || v[j].metrics.contact_episodes != pt.metrics.contact_episodes)
+        ++pt.jacobian_event_changes;
+    if (v[0].jacobian.rows() != d || v[0].jacobian.cols() != d) {
+      out_.jacobian_fallback = v[0].jacobian_fallback;
+      pt.jacobian.resize(0, 0);
+      return true;
+    }
+    ++out_.variational_jacobians;
+    pt.jacobian = v[0].jacobian;
+    pt.parameter_derivative = one_sided ? Eigen::VectorXd((v[1].z - pt.image) / (toward * dp))
+                                        : Eigen::VectorXd((v[1].z - v[2].z) / (2.0 * dp));
+    pt.multipliers = floquet_multipliers(pt.jacobian);
+    pt.stable = !pt.multipliers.empty() && pt.multipliers.front().magnitude() < 1.0;
+    return true;
+  }
+
+  bool jacobian_by_differences(BranchPoint& pt, std::optional<NumericalFailure>* failure) {
+    ++out_.difference_jacobians;
     const Eigen::Index d = pt.z.size();
     const double dz = s_.jacobian_step * std::max(pt.z.norm(), 1e-6);
     const double dp = s_.jacobian_step * std::abs(span_);
@@ -491,6 +548,7 @@ public:
 
 private:
   const ParametrisedMap& map_;
+  const ParametrisedJacobian& with_jacobian_;
   double from_, span_;
   ContinuationSettings s_;
   const std::function<void(const ContinuationProgress&)>& on_point_;
@@ -503,13 +561,13 @@ private:
 ContinuationResult continue_fixed_points(const ParametrisedMap& map, const Eigen::VectorXd& z0, double from, double to,
                                          int period, const ContinuationSettings& settings,
                                          const std::function<void(const ContinuationProgress&)>& on_point,
-                                         const ReseedFunction& reseed) {
+                                         const ReseedFunction& reseed, const ParametrisedJacobian& with_jacobian) {
   if (!std::isfinite(from) || !std::isfinite(to) || from == to)
     throw std::invalid_argument("the parameter's range must be two different finite numbers");
   if (z0.size() == 0) throw std::invalid_argument("an empty start state");
   if (period < 1) throw std::invalid_argument("a period below 1");
   ContinuationResult out;
-  Engine e(map, from, to, settings, on_point, out);
+  Engine e(map, with_jacobian, from, to, settings, on_point, out);
   e.set_scale(z0);
   std::string why;
   std::optional<BranchPoint> first = e.first_point(z0, from, period, why);

@@ -172,7 +172,7 @@ OrbitContinuation continue_orbits(const ConfigAtValue& config_at, const OrbitCon
 
   // 2. The map at any value of the parameter, and the continuation.
   CaseCache cases(config_at);
-  const ParametrisedMap map = [&cases, stop](const Eigen::VectorXd& z, double p, int period) {
+  const auto evaluate = [&cases, stop](const Eigen::VectorXd& z, double p, int period, bool tangent) {
     MapValue v;
     std::shared_ptr<const Case> c;
     try {
@@ -185,7 +185,7 @@ OrbitContinuation continue_orbits(const ConfigAtValue& config_at, const OrbitCon
     const SectionMap section(system, c->options, stop);
     MapEvaluation e;
     try {
-      e = section(z, period);
+      e = section(z, period, tangent);
     } catch (const std::exception& x) {
       v.failure = NumericalFailure{FailureKind::non_finite, 0.0, 0.0, x.what()};
       return v;
@@ -194,8 +194,17 @@ OrbitContinuation continue_orbits(const ConfigAtValue& config_at, const OrbitCon
     if (!e.complete) return v;
     v.z = e.z;
     v.metrics = metrics_of(e, c->beam->hub_motion().omega, period);
+    v.jacobian = e.jacobian;
+    v.jacobian_fallback = e.tangent_lost;
     return v;
   };
+  const ParametrisedMap map = [&evaluate](const Eigen::VectorXd& z, double p, int period) {
+    return evaluate(z, p, period, false);
+  };
+  // simulation.jacobian: ∂P/∂z from the variational equations (one run), or central differences.
+  ParametrisedJacobian with_jacobian;
+  if (start_case.options.jacobian == JacobianMethod::variational)
+    with_jacobian = [&evaluate](const Eigen::VectorXd& z, double p, int period) { return evaluate(z, p, period, true); };
   // After a stall: the steady state a little further on, by shooting from the last state the branch
   // reached (at most kReseedRevolutions revolutions: where no orbit settles, the range is crossed in
   // restart_jump steps).
@@ -221,7 +230,8 @@ OrbitContinuation continue_orbits(const ConfigAtValue& config_at, const OrbitCon
   };
   ContinuationSettings settings = options.settings;
   settings.tolerance = options.tolerance > 0 ? options.tolerance : out.config_from.simulation.steady_tolerance;
-  out.result = continue_fixed_points(map, z0, options.from, options.to, out.period, settings, on_point, reseed);
+  out.result = continue_fixed_points(map, z0, options.from, options.to, out.period, settings, on_point, reseed,
+                                     with_jacobian);
   // The first branch's period: the start found further on may have another than the one sought.
   if (!out.result.points.empty()) out.period = out.result.points.front().period;
   if (key == "hub.speed_rpm")

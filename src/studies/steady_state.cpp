@@ -56,9 +56,10 @@ SectionMap::SectionMap(const System& system, const PassOptions& options, const S
   options_.near_surface_gap_m = 0.0;
 }
 
-MapEvaluation SectionMap::operator()(const Eigen::VectorXd& z, int m) const {
+MapEvaluation SectionMap::operator()(const Eigen::VectorXd& z, int m, bool tangent) const {
   const InitialConditions ic = section_start(system_.beam, z);
   PassOptions o = options_;
+  o.tangent = tangent;
   o.revolutions = m;
   o.end_angle_deg = system_.beam.theta(0.0) * 180.0 / M_PI + 360.0 * m;
   DiscardSink sink;
@@ -72,11 +73,39 @@ MapEvaluation SectionMap::operator()(const Eigen::VectorXd& z, int m) const {
   e.complete = !r.failure && r.summary.revolutions == m;
   if (e.complete) e.z = section_state(system_.beam, r.final_q, r.final_qd);
   e.summary = r.summary;
+  e.tangent_lost = r.tangent_lost;
+  if (e.complete && r.final_tangent.size() > 0) {
+    // z = D x with D = diag(1/L, 1/(ωL)): ∂P/∂z = D Φ D⁻¹.
+    const int n = system_.beam.modes();
+    const double L = system_.beam.beam_length(), omega = system_.beam.hub_motion().omega;
+    Eigen::VectorXd d(2 * n);
+    d.head(n).setConstant(1.0 / L);
+    d.tail(n).setConstant(1.0 / (omega * L));
+    e.jacobian = d.asDiagonal() * r.final_tangent * d.cwiseInverse().asDiagonal();
+  }
   return e;
 }
 
 Eigen::MatrixXd SectionMap::jacobian(const Eigen::VectorXd& z, int m, const MapEvaluation& base,
                                      int* sequence_changes) const {
+  if (options_.jacobian == JacobianMethod::variational) {
+    const MapEvaluation e = (*this)(z, m, true);
+    if (e.complete && e.jacobian.size() > 0) {
+      if (sequence_changes && (e.impacts != base.impacts || e.contact_episodes != base.contact_episodes))
+        ++*sequence_changes;
+      last_method_ = "variational";
+      fallback_.clear();
+      return e.jacobian;
+    }
+    if (!e.complete) return {};
+    fallback_ = e.tangent_lost;
+  }
+  return jacobian_by_differences(z, m, base, sequence_changes);
+}
+
+Eigen::MatrixXd SectionMap::jacobian_by_differences(const Eigen::VectorXd& z, int m, const MapEvaluation& base,
+                                                    int* sequence_changes) const {
+  last_method_ = "differences";
   const Eigen::Index dim = z.size();
   const double delta = kJacobianStep * std::max(z.norm(), 1e-6);
   Eigen::MatrixXd J(dim, dim);
@@ -115,6 +144,12 @@ void add_multipliers(const SectionMap& map, const Eigen::VectorXd& z, int m, Ste
   const MapEvaluation base = map(z, m);
   if (!base.complete) return;
   st.multipliers = floquet_multipliers(map.jacobian(z, m, base, &st.event_sequence_changes));
+  st.jacobian = map.last_method();
+}
+
+// The clause of a note on a variational Jacobian that fell back to differences ("" when none did).
+std::string fallback_words(const std::string& why) {
+  return why.empty() ? "" : "; the map's Jacobian by differences, not the variational equations: " + why;
 }
 
 void report(const PassControl& control, std::chrono::steady_clock::time_point wall0, int revolutions_run, int cap,
@@ -210,8 +245,9 @@ PassResult brute_force(const System& system, const InitialConditions& initial, c
   if (!st.reached || r.failure || !options.multipliers) return r;
   const auto wall0 = std::chrono::steady_clock::now();
   const SectionMap map(system, options, control.stop);
+  const int runs = options.jacobian == JacobianMethod::variational ? 2 : 4 * system.beam.modes() + 1;
   report(control, wall0, st.after_revolutions, options.revolutions, st.final_distance,
-         "multipliers: " + std::to_string(4 * system.beam.modes() + 1) + " map evaluations");
+         "multipliers: " + std::to_string(runs) + " map evaluations");
   add_multipliers(map, section_state(system.beam, r.final_q, r.final_qd), st.period_revolutions, st);
   st.map_evaluations = map.evaluations();
   if (st.multipliers.empty())
@@ -222,6 +258,7 @@ PassResult brute_force(const System& system, const InitialConditions& initial, c
     st.note += "; " + std::to_string(st.event_sequence_changes) +
                " of the Jacobian's evaluations changed the impacts or episodes (a grazing orbit: the multipliers "
                "are those of a non-smooth map)";
+  st.note += fallback_words(map.fallback());
   r.summary.wall_time_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return r;
 }
@@ -267,6 +304,7 @@ NewtonOutcome newton(const SectionMap& map, Eigen::VectorXd z, int m, const Pass
            "shooting, period " + std::to_string(m) + ", Newton iteration " + std::to_string(it + 1));
     const Eigen::MatrixXd J = map.jacobian(z, m, base, &st.event_sequence_changes);
     out.jacobian = J;
+    st.jacobian = map.last_method();
     if (J.size() == 0) {
       out.why = "the map's evaluation did not complete";
       return out;
@@ -431,6 +469,7 @@ PassResult shooting(const System& system, const InitialConditions& initial, cons
     note << "; " << st.event_sequence_changes
          << " evaluations of the map changed the impacts or episodes (the event sequence is not fixed near this "
             "orbit: the map is not smooth there)";
+  note << fallback_words(map.fallback());
   st.note = note.str();
   r.summary.steady_state = st;
   if (!st.reached && !r.failure) r.summary.warnings.push_back("no steady state: " + st.note);
