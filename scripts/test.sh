@@ -24,11 +24,12 @@ end_background() {
 }
 trap end_background EXIT
 
-# stage NAME COMMAND...: runs the command, then prints "== NAME: N s".
+# stage NAME COMMAND...: runs the command, then prints "== NAME: N s"; returns the command's status
+# (also where it is called as `stage … || …`, which turns `set -e` off inside it).
 stage() {
   local name=$1 t0=$SECONDS
   shift
-  "$@"
+  "$@" || return
   echo "== $name: $((SECONDS - t0)) s"
 }
 

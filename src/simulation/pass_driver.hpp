@@ -21,6 +21,14 @@
 
 namespace rotbeam {
 
+/// An event of a pass whose saltation matrix is still to be applied (PassOptions::tangent): the root
+/// function that reached zero and the state before it.
+struct PendingEvent {
+  EventSurface surface;
+  EventSide before;
+  int impacts = 0;  // impacts the law applied at the event
+};
+
 class PassDriver final : public PhaseControl {
 public:
   PassDriver(const System& system, const PassOptions& options, Stepper& stepper, PassRecorder& recorder,
@@ -89,11 +97,6 @@ private:
   // The variational equations (PassOptions::tangent, tangent.hpp): an event opens where a root
   // function reached zero (a touch, a root of a contact phase) with the state before it; the new
   // phase's start applies its saltation matrix to state_.tangent.
-  struct PendingEvent {
-    EventSurface surface;
-    EventSide before;
-    int impacts = 0;  // impacts the law applied at the event
-  };
   void open_event(const EventSurface& surface);
   void close_event();
   void lose_tangent(const std::string& why);
